@@ -1,0 +1,45 @@
+"""Logix motion error numbers (.ERR) used by the core, and the result of a start call."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import IntEnum
+
+
+class MotionError(IntEnum):
+    """The subset of the Logix motion error table the core can report."""
+
+    OK = 0
+    SERVO_OFF_STATE = 5
+    PARAMETER_OUT_OF_RANGE = 13
+    ILLEGAL_DYNAMIC_CHANGE = 23
+    CAM_PROFILE_NOT_CALCULATED = 32
+    MDSC_NOT_ACTIVATED = 93
+    LOCK_DIRECTION_CONFLICT = 95
+
+
+@dataclass(frozen=True, slots=True)
+class StartResult:
+    """Outcome of a start call: a generator handle, or an error with its extended code."""
+
+    handle: int = 0
+    error: MotionError = MotionError.OK
+    exerr: int = 0
+
+    @property
+    def ok(self) -> bool:
+        return self.error == MotionError.OK
+
+
+class MotionParameterError(ValueError):
+    """Raised by pure planning functions (e.g. MCCP) on bad input; carries .ERR/.EXERR."""
+
+    def __init__(self, error: MotionError, exerr: int, message: str) -> None:
+        super().__init__(message)
+        self.error = error
+        self.exerr = exerr
+
+
+def bad_operand(index: int) -> StartResult:
+    """ERR 13 with the faceplate operand index (first operand is 0) as EXERR."""
+    return StartResult(error=MotionError.PARAMETER_OUT_OF_RANGE, exerr=index)
