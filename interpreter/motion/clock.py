@@ -1,0 +1,58 @@
+"""Master distance for master-driven motion (MDAC), with the MATC/MAM lock directions."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from interpreter.motion.enums import LockDirection, MasterReference
+
+
+@dataclass(slots=True)
+class MasterClock:
+    """Turns master positions, one per update, into the slave's clock (master distance).
+
+    Forward/reverse-only locks ratchet: the clock is the furthest distance reached in the
+    locked direction, so the slave stops while the master backs up and resumes when the
+    master passes that point again (TimeCamLockStatus follows `following`).
+    """
+
+    master: int
+    reference: MasterReference
+    lock_direction: LockDirection = LockDirection.NONE
+    lock_position: float = 0.0
+    start: float | None = None  # master position the distance counts from (None: not locked)
+    prev: float | None = None
+    peak: float = 0.0
+    following: bool = False
+    value: float = 0.0
+
+    def advance(self, pos: float) -> float:
+        """Feed the master position of this update; returns the master distance."""
+        ld = self.lock_direction
+        prev, self.prev = self.prev, pos
+        if self.start is None:
+            if ld in (LockDirection.POSITION_FORWARD, LockDirection.POSITION_REVERSE):
+                lp = self.lock_position
+                crossed = prev is not None and (
+                    (ld == LockDirection.POSITION_FORWARD and prev < lp <= pos)
+                    or (ld == LockDirection.POSITION_REVERSE and prev > lp >= pos)
+                )
+                if not crossed:
+                    return 0.0
+                self.start = lp  # count from the lock point itself, not the sampled position
+            else:
+                self.start = pos
+        backward = ld in (LockDirection.IMMEDIATE_REVERSE_ONLY, LockDirection.POSITION_REVERSE)
+        rel = self.start - pos if backward else pos - self.start
+        if ld == LockDirection.NONE:
+            self.following = True
+            self.value = rel
+        else:
+            self.following = rel >= self.peak
+            self.peak = max(self.peak, rel)
+            self.value = self.peak
+        return self.value
+
+    @property
+    def locked(self) -> bool:
+        return self.start is not None and self.following

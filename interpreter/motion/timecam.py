@@ -1,0 +1,272 @@
+"""Time cams (MATC) of a group, advanced together with numpy (one row per active cam)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from interpreter.motion.cam import CamProfile, ProfileBank
+from interpreter.motion.clock import MasterClock
+from interpreter.motion.enums import EventKind, ExecutionMode, LockDirection
+
+
+@dataclass(slots=True)
+class TimeCam:
+    """One MATC: contribution = gain * (P(clock / ts) - P(0) + passes * net)."""
+
+    handle: int
+    axis: int
+    profile: CamProfile
+    gain: float  # direction (+1/-1) * DistanceScaling
+    time_scaling: float
+    mode: ExecutionMode
+    clock: MasterClock | None = None  # master-driven when set
+    link: int = 0
+    raw: float = 0.0  # seconds since start, or master distance
+    offset: float = 0.0  # raw value at the start of the current pass
+    passes: float = 0.0
+    last: float = 0.0
+    fresh: bool = True
+    v: float = 0.0
+    a: float = 0.0
+
+    @property
+    def lock_direction(self) -> LockDirection:
+        return LockDirection.NONE if self.clock is None else self.clock.lock_direction
+
+
+@dataclass(slots=True)
+class CamStep:
+    """Per-cam results of one update for the group's bookkeeping."""
+
+    axis: np.ndarray
+    dpos: np.ndarray
+    vel: np.ndarray
+    acc: np.ndarray
+
+
+_EMPTY = CamStep(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
+
+
+class TimeCamSet:
+    """Active time cams in struct-of-arrays form; rows are rebuilt when the set changes."""
+
+    def __init__(self) -> None:
+        self.cams: list[TimeCam] = []
+        self.pending: dict[int, TimeCam] = {}
+        self._dirty = True
+        self._bank: ProfileBank | None = None
+
+    # -- membership ---------------------------------------------------------------
+    def add(self, cam: TimeCam) -> None:
+        self._sync_out()
+        self.cams.append(cam)
+        self._dirty = True
+
+    def remove(self, cams: list[TimeCam]) -> None:
+        self._sync_out()
+        gone = {id(c) for c in cams}
+        self.cams = [c for c in self.cams if id(c) not in gone]
+        self._dirty = True
+
+    def on_axis(self, axis: int) -> list[TimeCam]:
+        self._sync_out()
+        return [c for c in self.cams if c.axis == axis]
+
+    def _sync_out(self) -> None:
+        """Copy the array state back into the TimeCam objects before the rows change."""
+        if self._dirty or not self.cams:
+            return
+        for k, c in enumerate(self.cams):
+            c.raw = float(self._raw[k])
+            c.offset = float(self._offset[k])
+            c.passes = float(self._passes[k])
+            c.last = float(self._last[k])
+            c.fresh = bool(self._fresh[k])
+            c.v = float(self._v[k])
+            c.a = float(self._a[k])
+
+    def _rebuild(self) -> None:
+        cams = self.cams
+        profiles: list[CamProfile] = []
+        index: dict[int, int] = {}
+        for c in cams:
+            if id(c.profile) not in index:
+                index[id(c.profile)] = len(profiles)
+                profiles.append(c.profile)
+        if self._bank is None or self._bank.key != tuple(id(p) for p in profiles):
+            self._bank = ProfileBank(profiles)
+        f = float
+        self._axis = np.array([c.axis for c in cams], dtype=np.intp)
+        self._prof = np.array([index[id(c.profile)] for c in cams], dtype=np.intp)
+        self._gain = np.array([c.gain for c in cams], dtype=f)
+        self._ts = np.array([c.time_scaling for c in cams], dtype=f)
+        self._cont = np.array([c.mode == ExecutionMode.CONTINUOUS for c in cams], dtype=bool)
+        self._md = np.array([c.clock is not None for c in cams], dtype=bool)
+        self._md_rows = np.flatnonzero(self._md)
+        self._raw = np.array([c.raw for c in cams], dtype=f)
+        self._offset = np.array([c.offset for c in cams], dtype=f)
+        self._passes = np.array([c.passes for c in cams], dtype=f)
+        self._last = np.array([c.last for c in cams], dtype=f)
+        self._fresh = np.array([c.fresh for c in cams], dtype=bool)
+        self._v = np.array([c.v for c in cams], dtype=f)
+        self._a = np.array([c.a for c in cams], dtype=f)
+        self._span = np.array([p.span for p in profiles], dtype=f)[self._prof]
+        self._p0 = np.array([p.p_start for p in profiles], dtype=f)[self._prof]
+        self._net = np.array([p.net for p in profiles], dtype=f)[self._prof]
+        self._has_pending = np.array([c.axis in self.pending for c in cams], dtype=bool)
+        self._dirty = False
+
+    def pending_changed(self) -> None:
+        self._sync_out()
+        self._dirty = True
+
+    # -- stepping -----------------------------------------------------------------
+    def step(
+        self,
+        cup: float,
+        rows_level: np.ndarray | None,
+        positions: tuple[np.ndarray, np.ndarray],
+        velocities: tuple[np.ndarray, np.ndarray],
+        events: list[tuple[int, EventKind, int]],
+    ) -> CamStep:
+        """Advance the cams (all, or those on rows_level) one update."""
+        if not self.cams:
+            return _EMPTY
+        if self._dirty:
+            self._rebuild()
+        sel = np.arange(len(self.cams)) if rows_level is None else rows_level
+        if len(sel) == 0:
+            return _EMPTY
+        fresh = self._fresh[sel]
+        if fresh.any():
+            for k in sel[fresh]:
+                events.append((self.cams[k].handle, EventKind.IN_PROCESS, self.cams[k].axis))
+        # the own clock is 0 at the first update, then advances by cup (or master distance)
+        self._raw[sel] = np.where(fresh, 0.0, self._raw[sel] + cup)
+        self._fresh[sel] = False
+        mvel = np.ones(len(self.cams))
+        for k in self._md_rows:
+            if rows_level is not None and k not in sel:
+                continue
+            c = self.cams[k]
+            assert c.clock is not None
+            ref, m = int(c.clock.reference), c.clock.master  # 0 actual, 1 command
+            self._raw[k] = c.clock.advance(float(positions[ref][m]))
+            mvel[k] = velocities[ref][m]
+        ts = self._ts[sel]
+        span = self._span[sel]
+        x = (self._raw[sel] - self._offset[sel]) / ts
+        over = x >= span
+        cont = self._cont[sel]
+        handover = over & self._has_pending[sel]
+        complete = over & ~cont & ~handover
+        # unwind continuous cams (both directions) by whole passes
+        k_pass = np.where(cont & ~handover, np.floor(x / span), 0.0)
+        if k_pass.any():
+            self._offset[sel] += k_pass * span * ts
+            self._passes[sel] += k_pass
+            x = x - k_pass * span
+        local = np.clip(x, 0.0, span)
+        assert self._bank is not None
+        p, v, a = self._bank.evaluate(self._prof[sel], local)
+        gain = self._gain[sel]
+        passes = self._passes[sel]
+        contrib = gain * (p - self._p0[sel] + passes * self._net[sel])
+        held = (x < 0.0) & ~cont  # before the start of a Once cam (master backing up)
+        contrib = np.where(complete, gain * (self._net[sel] * (passes + 1.0)), contrib)
+        mv = mvel[sel]
+        vel = np.where(complete | held, 0.0, gain * v / ts * mv)
+        acc = np.where(complete | held, 0.0, gain * a / (ts * ts) * mv * mv)
+        dpos = contrib - self._last[sel]
+        self._last[sel] = contrib
+        self._v[sel] = vel
+        self._a[sel] = acc
+        axis = self._axis[sel]
+        if complete.any() or handover.any():
+            dpos = dpos.copy()
+            for j in np.flatnonzero(complete | handover):
+                row = int(sel[j])
+                dpos[j] += self._finish(row, bool(handover[j]), events, vel, acc, j, mv[j])
+        return CamStep(axis, dpos, vel, acc)
+
+    def _finish(
+        self,
+        row: int,
+        handover: bool,
+        events: list[tuple[int, EventKind, int]],
+        vel: np.ndarray,
+        acc: np.ndarray,
+        j: int,
+        mv: float,
+    ) -> float:
+        """End a cam at the end of its pass; start the pending cam with the leftover time."""
+        self._sync_out()
+        old = self.cams[row]
+        end_value = old.gain * old.profile.net * (old.passes + 1.0)
+        extra = end_value - old.last  # rows computed for handovers hold P(clamped x)
+        old.last = end_value
+        pass_end = old.offset + old.profile.span * old.time_scaling
+        events.append(
+            (
+                old.handle,
+                EventKind.ENDED
+                if handover and old.mode == ExecutionMode.CONTINUOUS
+                else EventKind.COMPLETE,
+                old.axis,
+            )
+        )
+        self._finished.append(old)  # removed in end_update()
+        if not handover:
+            return extra
+        new = self.pending.pop(old.axis)
+        # the pending cam inherits the running clock: time, or the same master distance
+        new.clock = old.clock
+        new.raw = old.raw
+        new.offset = pass_end
+        new.fresh = False
+        xn = (new.raw - new.offset) / new.time_scaling
+        span = new.profile.span
+        k = math.floor(xn / span) if new.mode == ExecutionMode.CONTINUOUS else 0.0
+        new.offset += k * span * new.time_scaling
+        new.passes = float(k)
+        local = min(max(xn - k * span, 0.0), span)
+        p, v, a = new.profile.evaluate(local)
+        new.last = new.gain * (float(p) - new.profile.p_start + k * new.profile.net)
+        new.v = new.gain * float(v) / new.time_scaling * mv
+        new.a = new.gain * float(a) / new.time_scaling**2 * mv * mv
+        vel[j] = new.v
+        acc[j] = new.a
+        events.append((new.handle, EventKind.PENDING_STARTED, new.axis))
+        events.append((new.handle, EventKind.IN_PROCESS, new.axis))
+        self._started.append(new)
+        return extra + new.last
+
+    def begin_update(self) -> None:
+        self._finished: list[TimeCam] = []
+        self._started: list[TimeCam] = []
+
+    def end_update(self) -> None:
+        """Apply the removals and hand-overs collected during step()."""
+        if self._finished or self._started:
+            self._sync_out()
+            gone = {id(c) for c in self._finished}
+            self.cams = [c for c in self.cams if id(c) not in gone] + self._started
+            self._dirty = True
+
+    # -- queries for status arrays ---------------------------------------------------
+    def active_axes(self) -> np.ndarray:
+        if self._dirty:
+            self._rebuild()
+        return self._axis
+
+    def locked_axes(self) -> list[int]:
+        return [
+            c.axis
+            for c in self.cams
+            if c.clock is not None
+            and c.clock.lock_direction != LockDirection.NONE
+            and c.clock.locked
+        ]
