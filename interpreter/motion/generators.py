@@ -21,6 +21,7 @@ class ProfileGen:
     link: int = 0  # MDAC handle driving this generator (0: time driven)
     owner: int = 0  # MGS handle for stops started by a group stop
     t: float = -1.0  # own clock; < 0 until the first update
+    n: int = 0  # updates since the start (time-driven clock = n * cup, without drift)
     last_p: float = 0.0
     v_native: float = 0.0  # velocity in profile units (per s, or per master unit)
     v: float = 0.0  # velocity in units/s
@@ -29,12 +30,9 @@ class ProfileGen:
 
     def step(self, cup: float, master_pos: float, master_vel: float) -> float:
         """Advance the own clock one update; returns the position change."""
-        if self.t < 0.0:
-            self.t = 0.0
-            if self.clock is not None:
-                self.clock.advance(master_pos)
-        elif self.clock is None:
-            self.t += cup
+        if self.clock is None:
+            self.n += 1
+            self.t = self.n * cup
         else:
             self.t = self.clock.advance(master_pos)
         p, v, a = self.profile.at(self.t)

@@ -25,10 +25,10 @@ class TimeCam:
     clock: MasterClock | None = None  # master-driven when set
     link: int = 0
     raw: float = 0.0  # seconds since start, or master distance
+    count: int = 0  # updates since start (time-driven raw = count * cup)
     offset: float = 0.0  # raw value at the start of the current pass
     passes: float = 0.0
     last: float = 0.0
-    fresh: bool = True
     v: float = 0.0
     a: float = 0.0
 
@@ -81,10 +81,10 @@ class TimeCamSet:
             return
         for k, c in enumerate(self.cams):
             c.raw = float(self._raw[k])
+            c.count = int(self._count[k])
             c.offset = float(self._offset[k])
             c.passes = float(self._passes[k])
             c.last = float(self._last[k])
-            c.fresh = bool(self._fresh[k])
             c.v = float(self._v[k])
             c.a = float(self._a[k])
 
@@ -105,12 +105,13 @@ class TimeCamSet:
         self._ts = np.array([c.time_scaling for c in cams], dtype=f)
         self._cont = np.array([c.mode == ExecutionMode.CONTINUOUS for c in cams], dtype=bool)
         self._md = np.array([c.clock is not None for c in cams], dtype=bool)
-        self._md_rows = np.flatnonzero(self._md)
+        self._md_rows = np.flatnonzero(self._md).tolist()
+        self._all_rows = np.arange(len(cams))
         self._raw = np.array([c.raw for c in cams], dtype=f)
+        self._count = np.array([c.count for c in cams], dtype=np.int64)
         self._offset = np.array([c.offset for c in cams], dtype=f)
         self._passes = np.array([c.passes for c in cams], dtype=f)
         self._last = np.array([c.last for c in cams], dtype=f)
-        self._fresh = np.array([c.fresh for c in cams], dtype=bool)
         self._v = np.array([c.v for c in cams], dtype=f)
         self._a = np.array([c.a for c in cams], dtype=f)
         self._span = np.array([p.span for p in profiles], dtype=f)[self._prof]
@@ -127,29 +128,30 @@ class TimeCamSet:
     def step(
         self,
         cup: float,
-        rows_level: np.ndarray | None,
+        level_sel: tuple[np.ndarray, int] | None,
         positions: tuple[np.ndarray, np.ndarray],
         velocities: tuple[np.ndarray, np.ndarray],
         events: list[tuple[int, EventKind, int]],
     ) -> CamStep:
-        """Advance the cams (all, or those on rows_level) one update."""
+        """Advance the cams (all, or those whose axis has the given level) one update."""
         if not self.cams:
             return _EMPTY
         if self._dirty:
             self._rebuild()
-        sel = np.arange(len(self.cams)) if rows_level is None else rows_level
-        if len(sel) == 0:
-            return _EMPTY
-        fresh = self._fresh[sel]
-        if fresh.any():
-            for k in sel[fresh]:
-                events.append((self.cams[k].handle, EventKind.IN_PROCESS, self.cams[k].axis))
-        # the own clock is 0 at the first update, then advances by cup (or master distance)
-        self._raw[sel] = np.where(fresh, 0.0, self._raw[sel] + cup)
-        self._fresh[sel] = False
+        if level_sel is None:
+            sel = self._all_rows
+        else:
+            sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
+            if len(sel) == 0:
+                return _EMPTY
+        in_sel = set(sel.tolist()) if level_sel is not None else None
+        # a cam starts with count 0 at the update that applies it; then one more per update
+        cnt = self._count[sel] + 1
+        self._count[sel] = cnt
+        self._raw[sel] = cnt * cup
         mvel = np.ones(len(self.cams))
         for k in self._md_rows:
-            if rows_level is not None and k not in sel:
+            if in_sel is not None and k not in in_sel:
                 continue
             c = self.cams[k]
             assert c.clock is not None
@@ -225,8 +227,8 @@ class TimeCamSet:
         # the pending cam inherits the running clock: time, or the same master distance
         new.clock = old.clock
         new.raw = old.raw
+        new.count = old.count
         new.offset = pass_end
-        new.fresh = False
         xn = (new.raw - new.offset) / new.time_scaling
         span = new.profile.span
         k = math.floor(xn / span) if new.mode == ExecutionMode.CONTINUOUS else 0.0

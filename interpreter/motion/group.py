@@ -1,0 +1,819 @@
+"""MotionGroup: the axes of one motion group in numpy arrays, advanced one coarse update at a time.
+
+Instructions executed between updates are validated at once (an error comes back from the
+start call) and take effect at the next update(), where their own clock is 0 (SPEC 9.3).
+Start requests are applied at the end of that update, after the running generators have
+been advanced to it, so a replaced or stopped generator hands over its velocity at the
+same instant and absolute targets are measured from the command position at that update.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from interpreter.motion.cam import CamProfile
+from interpreter.motion.clock import MasterClock
+from interpreter.motion.enums import (
+    AxisKind,
+    CamDirection,
+    EventKind,
+    ExecutionMode,
+    ExecutionSchedule,
+    GeneratorKind,
+    InstructionMode,
+    LockDirection,
+    MasterReference,
+    MergeMode,
+    MergeSpeed,
+    MotionType,
+    MoveType,
+    ProfileShape,
+    StopType,
+)
+from interpreter.motion.errors import MotionError, StartResult, bad_operand
+from interpreter.motion.generators import ProfileGen
+from interpreter.motion.profiles import Limits, plan_jog, plan_move, plan_stop
+from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
+from interpreter.motion.timecam import TimeCam, TimeCamSet
+
+# Bit numbers of the AXIS MotionStatus word (names are the AXIS attribute names).
+STATUS_BITS: dict[str, int] = {
+    "AccelStatus": 0,
+    "DecelStatus": 1,
+    "MoveStatus": 2,
+    "JogStatus": 3,
+    "GearingStatus": 4,
+    "HomingStatus": 5,
+    "StoppingStatus": 6,
+    "AxisHomedStatus": 7,
+    "PositionCamStatus": 8,
+    "TimeCamStatus": 9,
+    "PositionCamPendingStatus": 10,
+    "TimeCamPendingStatus": 11,
+    "GearingLockStatus": 12,
+    "PositionCamLockStatus": 13,
+    "TimeCamLockStatus": 14,
+    "MasterOffsetMoveStatus": 15,
+    "CoordinatedMotionStatus": 16,
+    "JogLockStatus": 24,
+    "MasterOffsetMoveLockStatus": 26,
+    "MaximumSpeedExceeded": 27,
+}
+
+_VEL_EPS = 1e-9
+
+
+@dataclass(frozen=True, slots=True)
+class MotionEvent:
+    """Something that happened to a handle in one update."""
+
+    handle: int
+    kind: EventKind
+    axis: int
+
+
+@dataclass(slots=True)
+class AxisConfig:
+    """Configured limits used where an instruction does not give its own (MAS, MGS)."""
+
+    name: str
+    kind: AxisKind
+    max_speed: float = math.inf
+    max_accel: float = 1000.0
+    max_decel: float = 1000.0
+    max_accel_jerk: float = math.inf
+    max_decel_jerk: float = math.inf
+
+
+@dataclass(slots=True)
+class MasterLink:
+    """An MDAC assignment of a master to a slave for one motion type."""
+
+    handle: int
+    slave: int
+    master: int
+    motion_type: MotionType
+    reference: MasterReference
+
+
+@dataclass(slots=True)
+class _GroupStop:
+    handle: int
+    members: set[int] = field(default_factory=set)
+
+
+_MOTION_OF_KIND = {
+    GeneratorKind.MOVE: MotionType.MOVE,
+    GeneratorKind.JOG: MotionType.JOG,
+    GeneratorKind.TIME_CAM: MotionType.TIME_CAM,
+}
+
+
+class MotionGroup:
+    """State of all axes of a motion group; update() advances them one coarse update."""
+
+    def __init__(self, cup: float = 0.002) -> None:
+        if not cup > 0:
+            raise ValueError("coarse update period must be > 0")
+        self.cup = float(cup)
+        self.time = 0.0  # time of the latest update
+        self.updates = 0  # updates done; the next one happens at updates * cup
+        self.axes: list[AxisConfig] = []
+        self.command_position = np.zeros(0)
+        self.actual_position = np.zeros(0)
+        self.command_velocity = np.zeros(0)
+        self.actual_velocity = np.zeros(0)
+        self.command_acceleration = np.zeros(0)
+        self.servo_on = np.zeros(0, dtype=bool)
+        self.virtual = np.zeros(0, dtype=bool)
+        self.tau = np.zeros(0)
+        self._alpha = np.zeros(0)
+        self._last_cam_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
+        self._level = np.zeros(0, dtype=np.intp)
+        self._max_level = 0
+        self._levels_dirty = False
+        self.status: dict[str, np.ndarray] = {}
+        self._gens: list[ProfileGen] = []
+        self._cams = TimeCamSet()
+        self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
+        self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
+        self._next_handle = 1
+        self._cam_claim: set[int] = set()  # axes with an active or queued immediate cam
+        self._links_pending: dict[tuple[int, MotionType], MasterLink] = {}
+        self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
+        self._group_stops: dict[int, _GroupStop] = {}
+
+    # -- configuration ---------------------------------------------------------------
+    def add_axis(
+        self,
+        name: str,
+        kind: AxisKind = AxisKind.VIRTUAL,
+        *,
+        tau: float = DEFAULT_TAU,
+        position: float = 0.0,
+        max_speed: float = math.inf,
+        max_accel: float = 1000.0,
+        max_decel: float = 1000.0,
+        max_accel_jerk: float = math.inf,
+        max_decel_jerk: float = math.inf,
+    ) -> int:
+        """Add an axis (before running); returns its index."""
+        self.axes.append(
+            AxisConfig(name, kind, max_speed, max_accel, max_decel, max_accel_jerk, max_decel_jerk)
+        )
+        virtual = kind == AxisKind.VIRTUAL
+        self.command_position = np.append(self.command_position, position)
+        self.actual_position = np.append(self.actual_position, position)
+        self.command_velocity = np.append(self.command_velocity, 0.0)
+        self.actual_velocity = np.append(self.actual_velocity, 0.0)
+        self.command_acceleration = np.append(self.command_acceleration, 0.0)
+        self.servo_on = np.append(self.servo_on, virtual)  # a virtual axis needs no MSO
+        self.virtual = np.append(self.virtual, virtual)
+        self.tau = np.append(self.tau, 0.0 if virtual else tau)
+        self._alpha = lag_alpha(self.tau, self.cup)
+        self._last_cam_dir = np.append(self._last_cam_dir, np.int8(0))
+        self._level = np.append(self._level, 0)
+        for name_ in STATUS_BITS:
+            self.status[name_] = np.zeros(len(self.axes), dtype=bool)
+        self.status["ServoActionStatus"] = self.servo_on.copy()
+        return len(self.axes) - 1
+
+    def axis_index(self, name: str) -> int:
+        for i, a in enumerate(self.axes):
+            if a.name == name:
+                return i
+        raise KeyError(name)
+
+    def set_position(self, axis: int, position: float) -> None:
+        """Redefine command and actual position (for set-up and MRP-like use)."""
+        self.command_position[axis] = position
+        self.actual_position[axis] = position
+
+    def motion_status_word(self) -> np.ndarray:
+        """MotionStatus DINT bits per axis from the status arrays."""
+        word = np.zeros(len(self.axes), dtype=np.uint32)
+        for name, bit in STATUS_BITS.items():
+            word |= self.status[name].astype(np.uint32) << np.uint32(bit)
+        return word
+
+    def _handle(self) -> int:
+        h = self._next_handle
+        self._next_handle += 1
+        return h
+
+    # -- servo -------------------------------------------------------------------------
+    def servo_on_axis(self, axis: int) -> StartResult:
+        """MSO: close the loop (no effect on a virtual axis)."""
+        if not self.virtual[axis]:
+            self.servo_on[axis] = True
+            # the loop closes at the current actual position: no jump
+            self.command_position[axis] = self.actual_position[axis]
+        return StartResult(handle=self._handle())
+
+    def servo_off_axis(self, axis: int) -> StartResult:
+        """MSF: open the loop; running motion on the axis ends at the next update."""
+        h = self._handle()
+        if self.virtual[axis]:
+            return StartResult(handle=h)
+        self.servo_on[axis] = False
+        self._pre.append(lambda ev: self._kill_axis(axis, ev))
+        return StartResult(handle=h)
+
+    def shutdown_axis(self, axis: int) -> StartResult:
+        """MASD: end all motion of the axis at once and break its MDAC links."""
+        h = self._handle()
+        if not self.virtual[axis]:
+            self.servo_on[axis] = False
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            self._kill_axis(axis, ev)
+            self._break_links(lambda lk: axis in (lk.slave, lk.master), ev)
+
+        self._pre.append(apply)
+        return StartResult(handle=h)
+
+    def _kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
+        for g in [g for g in self._gens if g.axis == axis]:
+            self._end_gen(g, EventKind.ENDED, ev)
+        cams = self._cams.on_axis(axis)
+        for c in cams:
+            ev.append((c.handle, EventKind.ENDED, axis))
+        self._cams.remove(cams)
+        self._drop_pending(axis, ev)
+        self._cam_claim.discard(axis)
+        self.command_velocity[axis] = 0.0
+        self.command_acceleration[axis] = 0.0
+        self._levels_dirty = True
+
+    # -- MDAC ----------------------------------------------------------------------------
+    def assign_master(
+        self,
+        slave: int,
+        master: int,
+        motion_type: MotionType = MotionType.ALL,
+        reference: MasterReference = MasterReference.COMMAND,
+    ) -> StartResult:
+        """MDAC: a pending master for the slave's next master-driven motion of that type."""
+        if slave == master:
+            return bad_operand(1)
+        if motion_type not in MotionType.__members__.values():
+            return bad_operand(3)
+        if reference not in MasterReference.__members__.values():
+            return bad_operand(4)
+        h = self._handle()
+        key = (slave, MotionType(motion_type))
+        old = self._links_pending.get(key)
+        link = MasterLink(h, slave, master, MotionType(motion_type), MasterReference(reference))
+        self._links_pending[key] = link
+        if old is not None:  # a later MDAC overrides a pending one
+            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
+        return StartResult(handle=h)
+
+    def _find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
+        for table in (self._links_pending, self._links_active):
+            for key in ((slave, mt), (slave, MotionType.ALL)):
+                if key in table:
+                    return table[key]
+        return None
+
+    def _take_link(self, slave: int, mt: MotionType, ev: list) -> MasterLink | None:
+        """Promote a pending master (if any) at a slave motion start and return the link."""
+        for key in ((slave, mt), (slave, MotionType.ALL)):
+            link = self._links_pending.pop(key, None)
+            if link is not None:
+                old = self._links_active.get(key)
+                if old is not None and old is not link:
+                    ev.append((old.handle, EventKind.ENDED, slave))
+                self._links_active[key] = link
+                return link
+        return self._find_link(slave, mt)
+
+    def _break_links(self, pred: Callable[[MasterLink], bool], ev: list) -> None:
+        for table in (self._links_pending, self._links_active):
+            for key in [k for k, lk in table.items() if pred(lk)]:
+                ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
+                del table[key]
+
+    def _master_clock(
+        self, link: MasterLink, lock_direction: LockDirection, lock_position: float
+    ) -> MasterClock:
+        ref = MasterReference.COMMAND if self.virtual[link.master] else link.reference
+        return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
+
+    def _master_state(self, clock: MasterClock) -> tuple[float, float]:
+        m = clock.master
+        if clock.reference == MasterReference.ACTUAL:
+            return float(self.actual_position[m]), float(self.actual_velocity[m])
+        return float(self.command_position[m]), float(self.command_velocity[m])
+
+    # -- moves and jogs ----------------------------------------------------------------
+    def start_move(
+        self,
+        axis: int,
+        move_type: MoveType,
+        position: float,
+        speed: float,
+        accel: float,
+        decel: float,
+        profile: ProfileShape = ProfileShape.TRAPEZOIDAL,
+        accel_jerk: float = math.inf,
+        decel_jerk: float = math.inf,
+        merge: MergeMode = MergeMode.DISABLED,
+        merge_speed: MergeSpeed = MergeSpeed.PROGRAMMED,
+        lock_position: float = 0.0,
+        lock_direction: LockDirection = LockDirection.NONE,
+        master_driven: bool = False,
+    ) -> StartResult:
+        """MAM: absolute or incremental move; EXERR indices follow the MAM faceplate."""
+        if move_type not in (0, 1):
+            return bad_operand(2)
+        if not math.isfinite(position):
+            return bad_operand(3)
+        err = self._check_dynamics(
+            speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
+            lock_direction, master_driven, axis, MotionType.MOVE, first=4, step=2,
+        )  # fmt: skip
+        if err is not None:
+            return err
+        h = self._handle()
+        lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.MOVE]
+            remaining = sum(g.profile.end_position - g.last_p for g in replaced)
+            v0, clock, link = self._merge_out(axis, replaced, merge, ev, MotionType.MOVE,
+                                              master_driven, lock_direction, lock_position)
+            if move_type == MoveType.ABSOLUTE:
+                dist = position - float(self.command_position[axis])
+            else:  # an incremental move adds to the end point of the move it replaces
+                dist = position + remaining
+            use = lim
+            if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
+                use = Limits(abs(v0), lim.accel, lim.decel, lim.accel_jerk, lim.decel_jerk)
+            gen = ProfileGen(h, GeneratorKind.MOVE, axis, plan_move(dist, use, v0), clock, link)
+            self._add_gen(gen, ev)
+
+        self._post.append(apply)
+        return StartResult(handle=h)
+
+    def start_jog(
+        self,
+        axis: int,
+        direction: int,
+        speed: float,
+        accel: float,
+        decel: float,
+        profile: ProfileShape = ProfileShape.TRAPEZOIDAL,
+        accel_jerk: float = math.inf,
+        decel_jerk: float = math.inf,
+        merge: MergeMode = MergeMode.DISABLED,
+        merge_speed: MergeSpeed = MergeSpeed.PROGRAMMED,
+        lock_position: float = 0.0,
+        lock_direction: LockDirection = LockDirection.NONE,
+        master_driven: bool = False,
+    ) -> StartResult:
+        """MAJ: direction 0 forward, 1 reverse; runs until stopped or replaced."""
+        if direction not in (0, 1):
+            return bad_operand(2)
+        err = self._check_dynamics(
+            speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
+            lock_direction, master_driven, axis, MotionType.JOG, first=3, step=2,
+        )  # fmt: skip
+        if err is not None:
+            return err
+        h = self._handle()
+        lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
+        sign = 1.0 if direction == 0 else -1.0
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.JOG]
+            v0, clock, link = self._merge_out(axis, replaced, merge, ev, MotionType.JOG,
+                                              master_driven, lock_direction, lock_position)
+            target = sign * speed
+            if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
+                target = sign * abs(v0)
+            gen = ProfileGen(h, GeneratorKind.JOG, axis, plan_jog(target, lim, v0), clock, link)
+            self._add_gen(gen, ev)
+
+        self._post.append(apply)
+        return StartResult(handle=h)
+
+    def _check_dynamics(
+        self,
+        speed: float,
+        accel: float,
+        decel: float,
+        profile: int,
+        accel_jerk: float,
+        decel_jerk: float,
+        merge: int,
+        merge_speed: int,
+        lock_direction: int,
+        master_driven: bool,
+        axis: int,
+        mt: MotionType,
+        first: int,
+        step: int,
+    ) -> StartResult | None:
+        # operand order on both faceplates: Speed, Units, Accel, Units, Decel, Units,
+        # Profile, AccelJerk, DecelJerk, JerkUnits, Merge, MergeSpeed, LockPos, LockDir
+        if not (math.isfinite(speed) and speed >= 0.0):
+            return bad_operand(first)
+        if not (math.isfinite(accel) and accel > 0.0):
+            return bad_operand(first + step)
+        if not (math.isfinite(decel) and decel > 0.0):
+            return bad_operand(first + 2 * step)
+        p = first + 3 * step
+        if profile not in (0, 1):
+            return bad_operand(p)
+        if profile == ProfileShape.S_CURVE:
+            if not accel_jerk > 0.0:
+                return bad_operand(p + 1)
+            if not decel_jerk > 0.0:
+                return bad_operand(p + 2)
+        if merge not in (0, 1, 2):
+            return bad_operand(p + 4)
+        if merge_speed not in (0, 1):
+            return bad_operand(p + 5)
+        if lock_direction not in (0, 1, 2, 3, 4):
+            return bad_operand(p + 7)
+        if not master_driven and lock_direction != LockDirection.NONE:
+            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+        if not self.servo_on[axis]:
+            return StartResult(error=MotionError.SERVO_OFF_STATE)
+        if master_driven and self._find_link(axis, mt) is None:
+            return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
+        return None
+
+    def _merge_out(
+        self,
+        axis: int,
+        replaced: list[ProfileGen],
+        merge: MergeMode,
+        ev: list,
+        mt: MotionType,
+        master_driven: bool,
+        lock_direction: LockDirection,
+        lock_position: float,
+    ) -> tuple[float, MasterClock | None, int]:
+        """End the replaced generators (all motion for Merge All); their velocity carries on."""
+        v_time = sum(g.v for g in replaced)
+        v_native = sum(g.v_native for g in replaced)
+        same_units = all((g.clock is not None) == master_driven for g in replaced)
+        for g in replaced:
+            self._end_gen(g, EventKind.ENDED, ev)
+        if merge == MergeMode.ALL:
+            for g in [g for g in self._gens if g.axis == axis]:
+                v_time += g.v
+                same_units = False
+                self._end_gen(g, EventKind.ENDED, ev)
+            cams = self._cams.on_axis(axis)
+            for c in cams:
+                v_time += c.v
+                same_units = False
+                ev.append((c.handle, EventKind.ENDED, axis))
+            self._cams.remove(cams)
+            self._cam_claim.discard(axis)
+        clock, link_handle = None, 0
+        v0 = v_time
+        if master_driven:
+            link = self._take_link(axis, mt, ev)
+            assert link is not None
+            clock = self._master_clock(link, lock_direction, lock_position)
+            pos, mvel = self._master_state(clock)
+            clock.advance(pos)
+            link_handle = link.handle
+            ev.append((link.handle, EventKind.ACTIVE, axis))
+            if same_units and replaced:
+                v0 = v_native
+            else:
+                v0 = v_time / mvel if abs(mvel) > _VEL_EPS else 0.0
+        elif not same_units or not replaced:
+            v0 = v_time
+        return v0, clock, link_handle
+
+    def _add_gen(self, gen: ProfileGen, ev: list[tuple[int, EventKind, int]]) -> None:
+        """Start a generator at this update: own clock 0, contribution 0, velocity v0."""
+        gen.t = 0.0 if gen.clock is None else gen.clock.value
+        p, v, a = gen.profile.at(gen.t)
+        gen.last_p = p
+        gen.v_native = v
+        if gen.clock is None:
+            gen.v, gen.a = v, a
+        else:
+            _, mvel = self._master_state(gen.clock)
+            gen.v, gen.a = v * mvel, a * mvel * mvel
+        self._gens.append(gen)
+        self._levels_dirty = True
+        ev.append((gen.handle, EventKind.IN_PROCESS, gen.axis))
+        gen.phase = gen.current_phase()
+        ev.append((gen.handle, gen.phase, gen.axis))
+        if gen.finished:
+            self._end_gen(gen, EventKind.COMPLETE, ev)
+
+    def _end_gen(self, g: ProfileGen, kind: EventKind, ev: list) -> None:
+        if g in self._gens:
+            self._gens.remove(g)
+            self._levels_dirty = True
+        ev.append((g.handle, kind, g.axis))
+        if g.owner:
+            gs = self._group_stops.get(g.owner)
+            if gs is not None:
+                gs.members.discard(g.handle)
+                if not gs.members:
+                    ev.append((gs.handle, EventKind.COMPLETE, -1))
+                    del self._group_stops[g.owner]
+
+    # -- stops ---------------------------------------------------------------------------
+    def stop(
+        self,
+        axis: int,
+        stop_type: StopType = StopType.ALL,
+        decel: float | None = None,
+        decel_jerk: float | None = None,
+    ) -> StartResult:
+        """MAS: decelerate the selected motion to rest (None: the axis's configured limits)."""
+        if stop_type not in StopType.__members__.values():
+            return bad_operand(2)
+        if decel is not None and not (math.isfinite(decel) and decel > 0.0):
+            return bad_operand(4)
+        if decel_jerk is not None and not decel_jerk > 0.0:
+            return bad_operand(7)
+        h = self._handle()
+        self._post.append(lambda ev: self._apply_stop(h, axis, StopType(stop_type), decel,
+                                                      decel_jerk, 0, ev))
+        if stop_type in (StopType.ALL, StopType.TIME_CAM):
+            self._cam_claim.discard(axis)
+        return StartResult(handle=h)
+
+    def stop_group(self) -> StartResult:
+        """MGS (programmed): stop all motion of every axis with its configured decel."""
+        h = self._handle()
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            gs = _GroupStop(h)
+            self._group_stops[h] = gs
+            for axis in range(len(self.axes)):
+                sh = self._handle()
+                gs.members.add(sh)
+                self._apply_stop(sh, axis, StopType.ALL, None, None, h, ev)
+            if h in self._group_stops and not gs.members:
+                ev.append((h, EventKind.COMPLETE, -1))
+                del self._group_stops[h]
+
+        self._post.append(apply)
+        self._cam_claim.clear()
+        return StartResult(handle=h)
+
+    def _apply_stop(
+        self,
+        h: int,
+        axis: int,
+        stop_type: StopType,
+        decel: float | None,
+        decel_jerk: float | None,
+        owner: int,
+        ev: list[tuple[int, EventKind, int]],
+    ) -> None:
+        kinds = {
+            StopType.ALL: {GeneratorKind.MOVE, GeneratorKind.JOG, GeneratorKind.STOP},
+            StopType.MOVE: {GeneratorKind.MOVE},
+            StopType.JOG: {GeneratorKind.JOG},
+        }.get(stop_type, set())
+        v0 = 0.0
+        for g in [g for g in self._gens if g.axis == axis and g.kind in kinds]:
+            v0 += g.v
+            self._end_gen(g, EventKind.ENDED, ev)
+        if stop_type in (StopType.ALL, StopType.TIME_CAM):
+            cams = self._cams.on_axis(axis)
+            for c in cams:
+                v0 += c.v
+                ev.append((c.handle, EventKind.ENDED, axis))
+            self._cams.remove(cams)
+            self._drop_pending(axis, ev)
+        if stop_type == StopType.ALL:
+            self._break_links(lambda lk: lk.slave == axis, ev)
+        cfg = self.axes[axis]
+        dec = cfg.max_decel if decel is None else decel
+        jerk = cfg.max_decel_jerk if decel_jerk is None else decel_jerk
+        lim = Limits(0.0, dec, dec, jerk, jerk)
+        gen = ProfileGen(h, GeneratorKind.STOP, axis, plan_stop(v0, lim), owner=owner)
+        self._add_gen(gen, ev)
+
+    def _drop_pending(self, axis: int, ev: list) -> None:
+        cam = self._cams.pending.pop(axis, None)
+        if cam is not None:
+            ev.append((cam.handle, EventKind.ENDED, axis))
+            self._cams.pending_changed()
+
+    # -- time cams -----------------------------------------------------------------------
+    def start_time_cam(
+        self,
+        axis: int,
+        profile: CamProfile | None,
+        direction: CamDirection = CamDirection.SAME,
+        distance_scaling: float = 1.0,
+        time_scaling: float = 1.0,
+        execution_mode: ExecutionMode = ExecutionMode.ONCE,
+        execution_schedule: ExecutionSchedule = ExecutionSchedule.IMMEDIATE,
+        lock_position: float = 0.0,
+        lock_direction: LockDirection = LockDirection.NONE,
+        instruction_mode: InstructionMode = InstructionMode.TIME_DRIVEN,
+    ) -> StartResult:
+        """MATC; profile None means not calculated (ERR 32)."""
+        if direction not in (0, 1, 2, 3):
+            return bad_operand(2)
+        if profile is None:
+            return StartResult(error=MotionError.CAM_PROFILE_NOT_CALCULATED)
+        if not math.isfinite(distance_scaling):
+            return bad_operand(4)
+        if not (math.isfinite(time_scaling) and time_scaling > 0.0):
+            return bad_operand(5)
+        if execution_mode not in (0, 1):
+            return bad_operand(6)
+        if execution_schedule not in (0, 1):
+            return bad_operand(7)
+        if not math.isfinite(lock_position):
+            return bad_operand(8)
+        if lock_direction not in (0, 1, 2, 3, 4):
+            return bad_operand(9)
+        if instruction_mode not in (0, 1):
+            return bad_operand(10)
+        pending = execution_schedule == ExecutionSchedule.PENDING
+        master_driven = instruction_mode == InstructionMode.MASTER_DRIVEN
+        if pending and lock_direction in (LockDirection.POSITION_FORWARD,
+                                          LockDirection.POSITION_REVERSE):
+            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+        if not master_driven and lock_direction != LockDirection.NONE and not pending:
+            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+        if not pending and axis in self._cam_claim:
+            return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
+        if not self.servo_on[axis]:
+            return StartResult(error=MotionError.SERVO_OFF_STATE)
+        if master_driven and not pending and self._find_link(axis, MotionType.TIME_CAM) is None:
+            return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
+        last = int(self._last_cam_dir[axis])
+        sign = {
+            CamDirection.SAME: 1,
+            CamDirection.OPPOSITE: -1,
+            CamDirection.REVERSE: -last if last else -1,
+            CamDirection.UNCHANGED: last if last else 1,
+        }[CamDirection(direction)]
+        self._last_cam_dir[axis] = sign
+        h = self._handle()
+        cam = TimeCam(h, axis, profile, sign * distance_scaling, time_scaling,
+                      ExecutionMode(execution_mode))
+        if pending:
+            def apply_pending(ev: list[tuple[int, EventKind, int]]) -> None:
+                # a pending cam runs in the mode (and with the master) of the active cam
+                self._drop_pending(axis, ev)
+                self._cams.pending[axis] = cam
+                self._cams.pending_changed()
+
+            self._post.append(apply_pending)
+            return StartResult(handle=h)
+
+        self._cam_claim.add(axis)
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            if master_driven:
+                link = self._take_link(axis, MotionType.TIME_CAM, ev)
+                assert link is not None
+                cam.clock = self._master_clock(link, lock_direction, lock_position)
+                cam.link = link.handle
+                pos, _ = self._master_state(cam.clock)
+                cam.raw = cam.clock.advance(pos)
+                cam.offset = cam.raw
+                ev.append((link.handle, EventKind.ACTIVE, axis))
+            p, v, _a = profile.evaluate(profile.start)
+            cam.v = cam.gain * float(v) / time_scaling if cam.clock is None else 0.0
+            self._cams.add(cam)
+            self._levels_dirty = True
+            ev.append((h, EventKind.IN_PROCESS, axis))
+
+        self._post.append(apply)
+        return StartResult(handle=h)
+
+    # -- the update ------------------------------------------------------------------------
+    def _compute_levels(self) -> None:
+        """Masters before slaves: level(slave) = level(master) + 1 (cycles are capped)."""
+        n = len(self.axes)
+        edges = [(g.axis, g.clock.master) for g in self._gens if g.clock is not None]
+        edges += [(c.axis, c.clock.master) for c in self._cams.cams if c.clock is not None]
+        level = np.zeros(n, dtype=np.intp)
+        for _ in range(n):
+            changed = False
+            for s, m in edges:
+                if level[s] < level[m] + 1 and level[m] + 1 < n:
+                    level[s] = level[m] + 1
+                    changed = True
+            if not changed:
+                break
+        self._level = level
+        self._max_level = int(level.max()) if n else 0
+        self._levels_dirty = False
+
+    def update(self) -> list[MotionEvent]:
+        """Advance every axis one coarse update; returns the events of this update."""
+        ev: list[tuple[int, EventKind, int]] = []
+        self.time = self.updates * self.cup  # updates happen at 0, cup, 2 cup, ...
+        pre, self._pre = self._pre, []
+        for f in pre:
+            f(ev)
+        if self._levels_dirty:
+            self._compute_levels()
+        n = len(self.axes)
+        cup = self.cup
+        cams = self._cams
+        cams.begin_update()
+        prev_actual = self.actual_position.copy()
+        for lvl in range(self._max_level + 1):
+            single = self._max_level == 0
+            ax: list[int] = []
+            dp: list[float] = []
+            vv: list[float] = []
+            aa: list[float] = []
+            for g in list(self._gens):
+                if not single and self._level[g.axis] != lvl:
+                    continue
+                if g.clock is None:
+                    d = g.step(cup, 0.0, 0.0)
+                else:
+                    pos, mvel = self._master_state(g.clock)
+                    d = g.step(cup, pos, mvel)
+                ax.append(g.axis)
+                dp.append(d)
+                vv.append(g.v)
+                aa.append(g.a)
+                ph = g.current_phase()
+                if ph != g.phase:
+                    g.phase = ph
+                    ev.append((g.handle, ph, g.axis))
+                if g.kind != GeneratorKind.JOG and g.finished:
+                    self._end_gen(g, EventKind.COMPLETE, ev)
+            cs = cams.step(
+                cup,
+                None if single else (self._level, lvl),
+                (self.actual_position, self.command_position),
+                (self.actual_velocity, self.command_velocity),
+                ev,
+            )
+            idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
+            if ax or len(cs.axis):
+                axes = np.concatenate((np.asarray(ax, dtype=np.intp), cs.axis))
+                dpos = np.bincount(axes, np.concatenate((dp, cs.dpos)), n)
+                vel = np.bincount(axes, np.concatenate((vv, cs.vel)), n)
+                acc = np.bincount(axes, np.concatenate((aa, cs.acc)), n)
+                self.command_position += dpos
+                self.command_velocity[idx] = vel[idx]
+                self.command_acceleration[idx] = acc[idx]
+            else:
+                self.command_velocity[idx] = 0.0
+                self.command_acceleration[idx] = 0.0
+            servo_step(self.command_position, self.actual_position, self._alpha,
+                       self.servo_on, idx)
+            self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
+        cams.end_update()
+        post, self._post = self._post, []
+        for f in post:
+            f(ev)
+        self.updates += 1
+        self._update_status()
+        return [MotionEvent(h, k, a) for h, k, a in ev]
+
+    def _update_status(self) -> None:
+        n = len(self.axes)
+        st = self.status
+        v, a = self.command_velocity, self.command_acceleration
+        moving = np.abs(v) > _VEL_EPS
+        st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
+        st["DecelStatus"] = v * a < -_VEL_EPS
+        for name, kind in (
+            ("MoveStatus", GeneratorKind.MOVE),
+            ("JogStatus", GeneratorKind.JOG),
+            ("StoppingStatus", GeneratorKind.STOP),
+        ):
+            arr = np.zeros(n, dtype=bool)
+            arr[[g.axis for g in self._gens if g.kind == kind]] = True
+            st[name] = arr
+        tc = np.zeros(n, dtype=bool)
+        tc[self._cams.active_axes()] = True
+        st["TimeCamStatus"] = tc
+        tp = np.zeros(n, dtype=bool)
+        tp[list(self._cams.pending)] = True
+        st["TimeCamPendingStatus"] = tp
+        tl = np.zeros(n, dtype=bool)
+        tl[self._cams.locked_axes()] = True
+        st["TimeCamLockStatus"] = tl
+        cm = np.zeros(n, dtype=bool)
+        cm[[lk.slave for lk in self._links_active.values()]] = True
+        cm[[lk.slave for lk in self._links_pending.values()]] = True
+        st["CoordinatedMotionStatus"] = cm
+        st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
+        st["ServoActionStatus"] = self.servo_on.copy()
+        # every queued request has been applied: the claim is exactly the running cams
+        self._cam_claim = set(self._cams.active_axes().tolist())
