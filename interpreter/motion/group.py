@@ -345,8 +345,16 @@ class MotionGroup:
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.MOVE]
             remaining = sum(g.profile.end_position - g.last_p for g in replaced)
-            v0, clock, link = self._merge_out(axis, replaced, merge, ev, MotionType.MOVE,
-                                              master_driven, lock_direction, lock_position)
+            v0, clock, link = self._merge_out(
+                axis,
+                replaced,
+                merge,
+                ev,
+                MotionType.MOVE,
+                master_driven,
+                lock_direction,
+                lock_position,
+            )
             if move_type == MoveType.ABSOLUTE:
                 dist = position - float(self.command_position[axis])
             else:  # an incremental move adds to the end point of the move it replaces
@@ -391,8 +399,16 @@ class MotionGroup:
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.JOG]
-            v0, clock, link = self._merge_out(axis, replaced, merge, ev, MotionType.JOG,
-                                              master_driven, lock_direction, lock_position)
+            v0, clock, link = self._merge_out(
+                axis,
+                replaced,
+                merge,
+                ev,
+                MotionType.JOG,
+                master_driven,
+                lock_direction,
+                lock_position,
+            )
             target = sign * speed
             if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
                 target = sign * abs(v0)
@@ -544,8 +560,9 @@ class MotionGroup:
         if decel_jerk is not None and not decel_jerk > 0.0:
             return bad_operand(7)
         h = self._handle()
-        self._post.append(lambda ev: self._apply_stop(h, axis, StopType(stop_type), decel,
-                                                      decel_jerk, 0, ev))
+        self._post.append(
+            lambda ev: self._apply_stop(h, axis, StopType(stop_type), decel, decel_jerk, 0, ev)
+        )
         if stop_type in (StopType.ALL, StopType.TIME_CAM):
             self._cam_claim.discard(axis)
         return StartResult(handle=h)
@@ -645,8 +662,10 @@ class MotionGroup:
             return bad_operand(10)
         pending = execution_schedule == ExecutionSchedule.PENDING
         master_driven = instruction_mode == InstructionMode.MASTER_DRIVEN
-        if pending and lock_direction in (LockDirection.POSITION_FORWARD,
-                                          LockDirection.POSITION_REVERSE):
+        if pending and lock_direction in (
+            LockDirection.POSITION_FORWARD,
+            LockDirection.POSITION_REVERSE,
+        ):
             return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
         if not master_driven and lock_direction != LockDirection.NONE and not pending:
             return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
@@ -665,9 +684,11 @@ class MotionGroup:
         }[CamDirection(direction)]
         self._last_cam_dir[axis] = sign
         h = self._handle()
-        cam = TimeCam(h, axis, profile, sign * distance_scaling, time_scaling,
-                      ExecutionMode(execution_mode))
+        cam = TimeCam(
+            h, axis, profile, sign * distance_scaling, time_scaling, ExecutionMode(execution_mode)
+        )
         if pending:
+
             def apply_pending(ev: list[tuple[int, EventKind, int]]) -> None:
                 # a pending cam runs in the mode (and with the master) of the active cam
                 self._drop_pending(axis, ev)
@@ -774,13 +795,19 @@ class MotionGroup:
             else:
                 self.command_velocity[idx] = 0.0
                 self.command_acceleration[idx] = 0.0
-            servo_step(self.command_position, self.actual_position, self._alpha,
-                       self.servo_on, idx)
+            servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
             self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
         cams.end_update()
         post, self._post = self._post, []
         for f in post:
             f(ev)
+        if post:  # generators started at this update report their start velocity now
+            vel, acc = self._cams.velocity_sums(n)
+            for g in self._gens:
+                vel[g.axis] += g.v
+                acc[g.axis] += g.a
+            self.command_velocity[:] = vel
+            self.command_acceleration[:] = acc
         self.updates += 1
         self._update_status()
         return [MotionEvent(h, k, a) for h, k, a in ev]

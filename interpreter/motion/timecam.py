@@ -258,6 +258,17 @@ class TimeCamSet:
             self.cams = [c for c in self.cams if id(c) not in gone] + self._started
             self._dirty = True
 
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Per-axis sums of the cams' command velocity and acceleration."""
+        if self._dirty:
+            self._rebuild()
+        if not self.cams:
+            return np.zeros(n), np.zeros(n)
+        return (
+            np.bincount(self._axis, self._v, n),
+            np.bincount(self._axis, self._a, n),
+        )
+
     # -- queries for status arrays ---------------------------------------------------
     def active_axes(self) -> np.ndarray:
         if self._dirty:

@@ -61,8 +61,10 @@ def main() -> dict[str, float]:
         g.update()
     wall = time.perf_counter() - t0
     results["wall_32_axes_60s"] = wall
-    print(f"32 axes, {sim_seconds:.0f} s simulated at {CUP * 1e3:.0f} ms: {wall:.2f} s wall "
-          f"({'OK' if wall < 10 else 'TOO SLOW'}, budget 10 s)")
+    print(
+        f"32 axes, {sim_seconds:.0f} s simulated at {CUP * 1e3:.0f} ms: {wall:.2f} s wall "
+        f"({'OK' if wall < 10 else 'TOO SLOW'}, budget 10 s)"
+    )
     base = None
     for n in (1, 8, 32, 128):
         cost = per_update_seconds(n, 5000)

@@ -123,8 +123,6 @@ def test_time_cam_trajectory_once_and_continuous():
     once, _, _ = time_cam_trajectory(p, t, distance_scaling=2.0, time_scaling=2.0)
     # contribution 2 * (P(t/2) - 2) = 2 * 3 * t/2 = 3 t until t = 2, then held at 6
     assert once == pytest.approx([0.0, 3.0, 6.0, 6.0, 6.0])
-    cont, v, _ = time_cam_trajectory(
-        p, t, 2.0, 2.0, ExecutionMode.CONTINUOUS, direction=-1.0
-    )
+    cont, v, _ = time_cam_trajectory(p, t, 2.0, 2.0, ExecutionMode.CONTINUOUS, direction=-1.0)
     assert cont == pytest.approx([0.0, -3.0, -6.0, -9.0, -15.0])
     assert v == pytest.approx([-3.0] * 5)
