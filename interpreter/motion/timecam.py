@@ -191,7 +191,9 @@ class TimeCamSet:
             dpos = dpos.copy()
             for j in np.flatnonzero(complete | handover):
                 row = int(sel[j])
-                dpos[j] += self._finish(row, bool(handover[j]), events, vel, acc, j, mv[j])
+                dpos[j] += self._finish(
+                    row, bool(handover[j]), events, vel, acc, int(j), float(mv[j])
+                )
         return CamStep(axis, dpos, vel, acc)
 
     def _finish(

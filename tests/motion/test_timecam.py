@@ -305,3 +305,63 @@ def test_mas_all_on_slave_breaks_link():
     assert EventKind.ENDED in kinds(ev, link.handle)
     assert not g.status["CoordinatedMotionStatus"][s]
     assert g.start_time_cam(s, RAMP, instruction_mode=MD).error == MotionError.MDSC_NOT_ACTIVATED
+
+
+def test_chain_of_masters_is_computed_in_order():
+    # m jogs; b cams on m's distance (P(x) = 2 + 3x, TS 1 -> 3 per master unit);
+    # c cams on b's distance (same ramp, TS 3 -> 1 per b unit): c = 3 * (m distance), no lag
+    g = MotionGroup(0.01)
+    c = g.add_axis("c")  # added first so that index order is not the evaluation order
+    b = g.add_axis("b")
+    m = g.add_axis("m")
+    assert g.assign_master(b, m).ok and g.assign_master(c, b).ok
+    g.start_jog(m, 0, 1.0, 2.0, 2.0)
+    g.start_time_cam(b, RAMP, time_scaling=1.0, instruction_mode=MD, execution_mode=CONT)
+    g.start_time_cam(c, RAMP, time_scaling=3.0, instruction_mode=MD, execution_mode=CONT)
+    g.update()
+    start = g.command_position[m]
+    for _ in range(200):
+        g.update()
+        d = g.command_position[m] - start
+        assert g.command_position[b] == pytest.approx(3 * d, abs=1e-9)
+        assert g.command_position[c] == pytest.approx(3 * d, abs=1e-9)
+
+
+def test_master_driven_once_cam_holds_when_master_backs_up():
+    g, m, s, _ = _master_slave(cup=0.1)
+    g.start_time_cam(s, RAMP, time_scaling=10.0, instruction_mode=MD)
+    g.update()
+    for pos, e in ((4.0, 4.0), (-2.0, 0.0), (3.0, 3.0), (12.0, 10.0)):
+        g.set_position(m, pos)
+        ev = g.update()
+        assert g.command_position[s] == pytest.approx(0.3 * e)
+    assert not g.status["TimeCamStatus"][s]  # completed at the end of the profile
+    assert any(e.kind == EventKind.COMPLETE for e in ev)
+
+
+def test_group_matches_whole_trajectory_evaluation():
+    from interpreter.motion import time_cam_trajectory
+
+    prof = calculate_cam_profile([0, 0.3, 1.0, 1.4], [0, 1, -1, 0.5], [1, 1, 0, 0], 2.0, 0.0)
+    g = MotionGroup(0.002)
+    a = g.add_axis("x")
+    g.start_time_cam(a, prof, CamDirection.OPPOSITE, 1.5, 0.7, CONT)
+    got = []
+    for _ in range(2000):
+        g.update()
+        got.append(g.command_position[a])
+    t = np.arange(2000) * 0.002
+    want, _, _ = time_cam_trajectory(prof, t, 1.5, 0.7, CONT, direction=-1.0)
+    assert np.max(np.abs(np.array(got) - want)) < 1e-9
+
+
+def test_servo_slave_actual_lags_its_cam():
+    g = MotionGroup(0.001)
+    s = g.add_axis("s", AxisKind.CIP_DRIVE, tau=0.01)
+    g.servo_on_axis(s)
+    g.start_time_cam(s, RAMP, execution_mode=CONT)  # 3 u/s
+    for _ in range(1000):
+        g.update()
+    q = np.exp(-0.1)  # cup / tau = 0.1
+    lag = 3.0 * 0.001 * q / (1 - q)
+    assert g.command_position[s] - g.actual_position[s] == pytest.approx(lag, rel=1e-6)
