@@ -259,7 +259,18 @@ class AstBuilder(Transformer):
 @cache
 def _parser() -> Lark:
     grammar = (Path(__file__).parent / "st.lark").read_text()
-    return Lark(grammar, parser="lalr", lexer="contextual", transformer=AstBuilder(), maybe_placeholders=True)
+    return Lark(
+        grammar, parser="lalr", lexer="contextual", transformer=AstBuilder(),
+        maybe_placeholders=True, start=["start", "expr"],
+    )
+
+
+def parse_expression(text: str) -> n.Expr:
+    """Parse one expression (`--watch`, `--set`); raises ValueError with a one-line reason."""
+    try:
+        return _parser().parse(text, start="expr")  # type: ignore[no-any-return]
+    except UnexpectedInput as e:
+        raise ValueError(f"cannot parse '{text}' at column {getattr(e, 'column', '?')}") from None
 
 
 _FRIENDLY = {
@@ -380,7 +391,7 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
     for _ in range(MAX_ERRORS + 1):
         rec = _Recovery(path, pending_closers)
         try:
-            result = _parser().parse(work, on_error=rec.on_error)
+            result = _parser().parse(work, start="start", on_error=rec.on_error)
         except UnexpectedInput as e:  # noqa: PERF203
             rec.fatal = rec.fatal or e
         for d in rec.diags:

@@ -1,0 +1,278 @@
+"""`logixst` command line: run and check (SPEC 6)."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import sys
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from .diagnostics import Diagnostic, Severity, has_errors
+from .runtime.controller import DEFAULT_WATCHDOG, Controller, WatchError, to_json_value
+from .runtime.loader import InputError, load
+from .semantics.types import Elementary
+from .syntax.literals import parse_number, parse_string
+
+EXIT_OK, EXIT_VERIFY, EXIT_USAGE, EXIT_FAULT = 0, 1, 2, 3
+
+
+class UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(message)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="logixst", description="Run and verify Logix 5000 Structured Text off the controller.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    run = sub.add_parser("run", help="run a program on simulated time")
+    run.add_argument("programs", nargs="+", type=Path, metavar="PROGRAM")
+    length = run.add_mutually_exclusive_group()
+    length.add_argument("--duration", type=float, metavar="S", help="simulated seconds (default 1)")
+    length.add_argument("--scans", type=int, metavar="N", help="number of normal scans")
+    run.add_argument("--scan-period", type=float, default=1.0, metavar="MS")
+    run.add_argument("--coarse-update", type=float, default=None, metavar="MS")
+    run.add_argument("--set", action="append", default=[], metavar="TAG=VALUE")
+    run.add_argument("--watch", action="append", default=[], metavar="EXPR")
+    run.add_argument("--trace", type=Path, metavar="FILE.csv")
+    run.add_argument("--json", action="store_true")
+    run.add_argument("--watchdog", type=int, default=DEFAULT_WATCHDOG, metavar="N")
+    check = sub.add_parser("check", help="verify without running")
+    check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
+    check.add_argument("--format", choices=["text", "json", "github", "sarif"], default="text")
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    try:
+        args = build_parser().parse_args(argv)
+        if args.command == "run":
+            return cmd_run(args)
+        return cmd_check(args)
+    except UsageError as exc:
+        print(f"logixst: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except InputError as exc:
+        print(f"logixst: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        return 130
+
+
+# ------------------------------------------------------------------ run
+def parse_set_value(text: str) -> object:
+    """An ST literal for --set: numbers (any radix), TRUE/FALSE, 'strings'."""
+    t = text.strip()
+    if t.upper() in ("TRUE", "FALSE"):
+        return 1 if t.upper() == "TRUE" else 0
+    if t.startswith("'") and t.endswith("'") and len(t) >= 2:
+        return parse_string(t)
+    neg = t.startswith("-")
+    try:
+        value, _ = parse_number(t[1:] if neg or t.startswith("+") else t)
+    except ValueError:
+        raise UsageError(f"--set: '{text}' is not an ST literal") from None
+    return -value if neg else value
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    if args.scan_period <= 0:
+        raise UsageError("--scan-period must be > 0")
+    if args.scans is not None and args.scans < 0:
+        raise UsageError("--scans must be >= 0")
+    if args.duration is not None and args.duration < 0:
+        raise UsageError("--duration must be >= 0")
+    loaded = load(args.programs)
+    if has_errors(loaded.diagnostics):
+        _print_diags(loaded.diagnostics)
+        if args.json:
+            print(json.dumps({"time": 0.0, "scans": 0, "tags": {}, "faults": [],
+                              "diagnostics": [d.to_json() for d in loaded.diagnostics]}))
+        return EXIT_VERIFY
+    _print_diags(loaded.diagnostics)  # warnings only
+    ctl = Controller(loaded, scan_period_ms=args.scan_period, watchdog=args.watchdog)
+    watches = _watches(ctl, args.watch)
+    for item in args.set:
+        name, sep, value = item.partition("=")
+        if not sep:
+            raise UsageError(f"--set expects TAG=VALUE, got '{item}'")
+        try:
+            _, _, setter = ctl.reference(name)
+            setter(parse_set_value(value))
+        except WatchError as exc:
+            raise UsageError(f"--set {exc}") from None
+    scans = args.scans if args.scans is not None else round((1.0 if args.duration is None else args.duration) * 1000.0 / args.scan_period)
+    trace_rows: list[list[object]] = []
+    ctl.prescan()
+    progress = _Progress(scans, enabled=sys.stderr.isatty() and not args.json)
+    ok = True
+    for k in range(scans):
+        ok = ctl.scan()
+        if args.trace is not None:
+            trace_rows.append([k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches])
+        if not ok:
+            break
+        progress.update(k + 1)
+    progress.done()
+    if args.trace is not None:
+        _write_trace(args.trace, [w for w, _, _ in watches], trace_rows)
+    faults = ctl.faults()
+    tags = {w: to_json_value(g(), t) for w, g, t in watches}
+    sim_time = ctl.scans * args.scan_period / 1000.0
+    if args.json:
+        print(json.dumps({"time": sim_time, "scans": ctl.scans, "tags": tags,
+                          "faults": [f.to_json() for f in faults],
+                          "diagnostics": [d.to_json() for d in loaded.diagnostics]}))
+    else:
+        _print_table(tags)
+        for f in faults:
+            print(f.text(), file=sys.stderr)
+    return EXIT_OK if ok else EXIT_FAULT
+
+
+def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], object]]:
+    if not exprs:
+        exprs = [t.name for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
+    out = []
+    for w in exprs:
+        try:
+            getter, t, _ = ctl.reference(w)
+        except WatchError as exc:
+            raise UsageError(f"--watch {exc}") from None
+        out.append((w, getter, t))
+    return out
+
+
+def _csv_value(v: object, t: object) -> object:
+    j = to_json_value(v, t)  # type: ignore[arg-type]
+    if isinstance(j, bool):
+        return 1 if j else 0
+    if isinstance(j, dict | list):
+        return json.dumps(j)
+    return j
+
+
+def _write_trace(path: Path, names: list[str], rows: list[list[object]]) -> None:
+    try:
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["time", *names])
+            w.writerows(rows)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write trace: {exc.strerror}") from exc
+
+
+def _print_table(tags: dict[str, object]) -> None:
+    if not tags:
+        print("(no elementary tags to show; use --watch)")
+        return
+    width = max(len(k) for k in tags)
+    for k, v in tags.items():
+        shown = json.dumps(v) if not isinstance(v, str) else repr(v)
+        print(f"{k.ljust(width)}  {shown}")
+
+
+class _Progress:
+    """A progress bar on stderr for runs longer than a couple of wall seconds (TTY only)."""
+
+    def __init__(self, total: int, enabled: bool) -> None:
+        self.total, self.enabled = total, enabled
+        self.start = time.monotonic()
+        self.shown = False
+        self.last = 0.0
+
+    def update(self, done: int) -> None:
+        if not self.enabled or done % 256:
+            return
+        now = time.monotonic()
+        if now - self.start < 2.0 or now - self.last < 0.2:
+            return
+        self.last, self.shown = now, True
+        frac = done / max(1, self.total)
+        bar = "#" * int(frac * 30)
+        print(f"\r[{bar:<30}] {frac:6.1%} scan {done}/{self.total}", end="", file=sys.stderr, flush=True)
+
+    def done(self) -> None:
+        if self.shown:
+            print(file=sys.stderr)
+
+
+# ------------------------------------------------------------------ check
+def cmd_check(args: argparse.Namespace) -> int:
+    groups: list[list[Path]] = []
+    files: list[Path] = []
+    for p in args.paths:
+        if not p.exists():
+            raise InputError(f"{p}: no such file or directory")
+        if p.is_dir():
+            members = sorted(x for x in p.iterdir() if x.suffix.lower() in (".st", ".rll"))
+            if members:
+                groups.append(members)
+        else:
+            files.append(p)
+    if files:
+        groups.insert(0, files)
+    diags: list[Diagnostic] = []
+    for g in groups:
+        diags.extend(load(g).diagnostics)
+    diags.sort(key=lambda d: d.sort_key())
+    _emit_check(diags, args.format)
+    return EXIT_VERIFY if has_errors(diags) else EXIT_OK
+
+
+def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
+    if fmt == "json":
+        print(json.dumps([d.to_json() for d in diags], indent=2))
+    elif fmt == "github":
+        for d in diags:
+            kind = "error" if d.severity is Severity.ERROR else "warning" if d.severity is Severity.WARNING else "notice"
+            print(f"::{kind} file={d.path},line={d.span.line},col={d.span.col},endLine={d.span.end_line},"
+                  f"endColumn={d.span.end_col},title={d.code}::{d.message}")
+    elif fmt == "sarif":
+        print(json.dumps(_sarif(diags), indent=2))
+    else:
+        for d in diags:
+            print(d.text())
+        errors = sum(1 for d in diags if d.severity is Severity.ERROR)
+        warnings = sum(1 for d in diags if d.severity is Severity.WARNING)
+        print(f"{errors} error(s), {warnings} warning(s)")
+
+
+def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
+    from .diagnostics import REGISTRY
+
+    level = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
+    return {
+        "version": "2.1.0",
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "runs": [{
+            "tool": {"driver": {"name": "logixst", "rules": [
+                {"id": c.code, "shortDescription": {"text": c.title}} for c in REGISTRY.values()
+            ]}},
+            "results": [{
+                "ruleId": d.code,
+                "level": level[d.severity],
+                "message": {"text": d.message},
+                "locations": [{"physicalLocation": {
+                    "artifactLocation": {"uri": d.path},
+                    "region": {"startLine": d.span.line, "startColumn": d.span.col,
+                               "endLine": d.span.end_line, "endColumn": d.span.end_col},
+                }}],
+            } for d in diags],
+        }],
+    }
+
+
+def _print_diags(diags: list[Diagnostic]) -> None:
+    for d in diags:
+        print(d.text(), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

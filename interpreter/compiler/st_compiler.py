@@ -1,0 +1,389 @@
+"""Lower checked ST routines to bytecode (see bytecode.py)."""
+
+from __future__ import annotations
+
+from stdlib import Instruction
+
+from ..semantics.checker import Analysis, FBCall
+from ..semantics.program import ProgramModel, const_number
+from ..semantics.types import BOOL, DINT, ArrayType, DataType, Elementary, StructType, promote
+from ..syntax import nodes as n
+from .bytecode import Code, Ins, Op
+
+_CMP = {"=", "<>", "<", "<=", ">", ">="}
+_LOGIC = {"AND", "OR", "XOR"}
+
+
+class RoutineCompiler:
+    def __init__(
+        self, model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None
+    ) -> None:
+        self.model = model
+        self.a = analysis
+        self.r = routine
+        self.code = Code(routine.name, routine.path)
+        if sites is not None:
+            self.code.sites = sites  # one site table shared by all routines of a program
+        self.ops = self.code.ops
+
+    # ------------------------------------------------------------ helpers
+    def emit(self, op: Op, arg: object = None, span: n.Span | None = None) -> None:
+        site = self.code.site(self.r.path, span) if span is not None else -1
+        self.ops.append(Ins(op, arg, site))
+
+    def type_of(self, e: n.Expr) -> DataType:
+        return self.a.type_of[id(e)]
+
+    def temp(self) -> int:
+        self.code.temps += 1
+        return self.code.temps - 1
+
+    # ------------------------------------------------------------ statements
+    def compile(self) -> Code:
+        self.block(self.r.body, in_loop=False)
+        self.prescan(self.r.body)
+        return self.code
+
+    def block(self, body: list[n.Stmt], in_loop: bool) -> None:
+        simple = sum(1 for s in body if not isinstance(s, n.Empty))
+        if simple:
+            self.emit(Op.STEP, (simple, in_loop), body[0].span if in_loop else None)
+        for s in body:
+            self.stmt(s)
+
+    def stmt(self, s: n.Stmt) -> None:
+        if isinstance(s, n.Assign):
+            self.place(s.target)
+            self.value(s.value, self.type_of(s.target))
+            self.emit(Op.STORE, self.type_of(s.target), s.span)
+        elif isinstance(s, n.CallStmt):
+            self.call(s.call)
+        elif isinstance(s, n.If):
+            for i, (cond, body) in enumerate(s.branches):
+                if i:
+                    self.emit(Op.ELSE)
+                self.cond(cond)
+                self.emit(Op.IF)
+                self.block(body, False)
+            if s.else_body is not None:
+                self.emit(Op.ELSE)
+                self.block(s.else_body, False)
+            for _ in s.branches:
+                self.emit(Op.END)
+        elif isinstance(s, n.Case):
+            self.case(s)
+        elif isinstance(s, n.For):
+            self.for_loop(s)
+        elif isinstance(s, n.While):
+            self.emit(Op.LOOP)
+            self.cond(s.cond)
+            self.emit(Op.BREAK_IFNOT)
+            self.block(s.body, True)
+            self.emit(Op.END)
+        elif isinstance(s, n.Repeat):
+            self.emit(Op.LOOP)
+            self.block(s.body, True)
+            self.cond(s.cond)
+            self.emit(Op.NOT, BOOL)
+            self.emit(Op.BREAK_IFNOT)
+            self.emit(Op.END)
+        elif isinstance(s, n.Exit):
+            self.emit(Op.BREAK)
+
+    def cond(self, e: n.Expr) -> None:
+        self.value(e, BOOL)
+
+    def case(self, s: n.Case) -> None:
+        sel_t = self.type_of(s.selector)
+        k = self.temp()
+        self.value(s.selector, sel_t)
+        self.emit(Op.TSET, k)
+        opened = 0
+        for i, arm in enumerate(s.arms):
+            if i:
+                self.emit(Op.ELSE)
+            first = True
+            for label in arm.labels:
+                if isinstance(label, n.CaseRange):
+                    self.emit(Op.TGET, (k, sel_t))
+                    self.const(label.low, sel_t)
+                    self.emit(Op.CMP, (">=", sel_t))
+                    self.emit(Op.TGET, (k, sel_t))
+                    self.const(label.high, sel_t)
+                    self.emit(Op.CMP, ("<=", sel_t))
+                    self.emit(Op.BIN, ("AND", BOOL))
+                else:
+                    self.emit(Op.TGET, (k, sel_t))
+                    self.const(label, sel_t)
+                    self.emit(Op.CMP, ("=", sel_t))
+                if not first:
+                    self.emit(Op.BIN, ("OR", BOOL))
+                first = False
+            self.emit(Op.IF)
+            opened += 1
+            self.block(arm.body, False)
+        if s.else_body is not None:
+            if opened:
+                self.emit(Op.ELSE)
+                self.block(s.else_body, False)
+            else:
+                self.block(s.else_body, False)
+        for _ in range(opened):
+            self.emit(Op.END)
+
+    def const(self, e: n.Expr, t: DataType) -> None:
+        v = const_number(e)
+        self.emit(Op.CONST, (v, DINT if isinstance(v, int) else t))
+        src = DINT if isinstance(v, int) else t
+        if src is not t:
+            self.emit(Op.CONV, (src, t))
+
+    def for_loop(self, s: n.For) -> None:
+        var_t = self.type_of(s.var)
+        assert isinstance(var_t, Elementary)
+        end_k, step_k = self.temp(), self.temp()
+        self.place(s.var)
+        self.value(s.start, var_t)
+        self.emit(Op.STORE, var_t, s.span)
+        self.value(s.end, var_t)
+        self.emit(Op.TSET, end_k)
+        if s.step is None:
+            self.emit(Op.CONST, (1, var_t))
+        else:
+            self.value(s.step, var_t)
+        self.emit(Op.TSET, step_k)
+        self.emit(Op.LOOP)
+        # continue while (step >= 0 and i <= end) or (step < 0 and i >= end)
+        step_const = const_number(s.step) if s.step is not None else 1
+        if isinstance(step_const, int | float):
+            self.place(s.var)
+            self.emit(Op.LOAD, var_t)
+            self.emit(Op.TGET, (end_k, var_t))
+            self.emit(Op.CMP, ("<=" if step_const >= 0 else ">=", var_t))
+        else:
+            self.emit(Op.TGET, (step_k, var_t))
+            self.emit(Op.CONST, (0, var_t))
+            self.emit(Op.CMP, (">=", var_t))
+            self.emit(Op.IF)
+            self.place(s.var)
+            self.emit(Op.LOAD, var_t)
+            self.emit(Op.TGET, (end_k, var_t))
+            self.emit(Op.CMP, ("<=", var_t))
+            self.emit(Op.BREAK_IFNOT)
+            self.emit(Op.ELSE)
+            self.place(s.var)
+            self.emit(Op.LOAD, var_t)
+            self.emit(Op.TGET, (end_k, var_t))
+            self.emit(Op.CMP, (">=", var_t))
+            self.emit(Op.BREAK_IFNOT)
+            self.emit(Op.END)
+            self.emit(Op.CONST, (1, BOOL))
+        self.emit(Op.BREAK_IFNOT)
+        self.block(s.body, True)
+        self.place(s.var)
+        self.place(s.var)
+        self.emit(Op.LOAD, var_t)
+        self.emit(Op.TGET, (step_k, var_t))
+        self.emit(Op.BIN, ("+", var_t), s.span)
+        self.emit(Op.STORE, var_t, s.span)
+        self.emit(Op.END)
+
+    # ------------------------------------------------------------ calls
+    def call(self, c: n.Call) -> None:
+        fb = self.a.fb_of.get(id(c))
+        if fb is not None:
+            self.fb_call(c, fb)
+            return
+        ins = self.a.call_of[id(c)]
+        if ins.name == "JSR":
+            target = c.args[0].value
+            assert isinstance(target, n.Name)
+            self.emit(Op.JSR, self.model.routine(target.ident).name, c.span)  # type: ignore[union-attr]
+            return
+        count = self.operands(c, ins)
+        self.emit(Op.CALL, (ins.key, count, True), c.span)
+
+    def operands(self, c: n.Call, ins: Instruction) -> int:
+        for i, arg in enumerate(c.args):
+            op = ins.operands[min(i, len(ins.operands) - 1)]
+            e = arg.value
+            if id(e) in self.a.enum_of:
+                self.emit(Op.CONST, (self.a.enum_of[id(e)], DINT))
+                continue
+            if op.format == "routine":
+                self.emit(Op.CONST, (e.ident if isinstance(e, n.Name) else "", None))
+                continue
+            t = self.a.type_of.get(id(e))
+            if op.format == "array":
+                arr_t = self.a.type_of[id(e.base)] if isinstance(e, n.Index) else t
+                assert isinstance(arr_t, ArrayType)
+                self.place(e)
+                self.emit(Op.AREF, (arr_t.elem, arr_t.dims, isinstance(e, n.Index)))
+                continue
+            if isinstance(t, StructType | ArrayType):
+                self.place(e)
+                self.emit(Op.VALUE)
+            elif op.dir in ("out", "inout") and isinstance(t, Elementary):
+                self.place(e)
+                self.emit(Op.REF, t)
+            else:
+                assert isinstance(t, Elementary)
+                self.value(e, t)
+        return len(c.args)
+
+    def fb_call(self, c: n.Call, fb: FBCall) -> None:
+        for idx, mt, value in fb.inputs:
+            self.place(fb.instance)
+            self.emit(Op.MEMBER, idx)
+            self.value(value, mt)
+            self.emit(Op.STORE, mt, value.span)
+        self.place(fb.instance)
+        self.emit(Op.VALUE)
+        self.emit(Op.CALL, (fb.instruction.key, 1, True), c.span)
+        for idx, mt, target in fb.outputs:
+            tt = self.type_of(target)
+            self.place(target)
+            self.place(fb.instance)
+            self.emit(Op.MEMBER, idx)
+            self.emit(Op.LOAD, mt)
+            self.convert(mt, tt)
+            self.emit(Op.STORE, tt, target.span)
+
+    # ------------------------------------------------------------ expressions
+    def place(self, e: n.Expr) -> None:
+        if isinstance(e, n.Name):
+            tag = self.a.tag_of[id(e)]
+            self.emit(Op.TAG, tag.slot)
+        elif isinstance(e, n.Member):
+            self.place(e.base)
+            bt = self.type_of(e.base)
+            assert isinstance(bt, StructType)
+            self.emit(Op.MEMBER, bt.index[e.name.upper()])
+        elif isinstance(e, n.Index):
+            self.place(e.base)
+            bt = self.type_of(e.base)
+            assert isinstance(bt, ArrayType)
+            for i in e.indices:
+                self.value(i, DINT)
+            self.emit(Op.INDEX, bt.dims, e.span)
+        elif isinstance(e, n.Bit):
+            self.place(e.base)
+            self.emit(Op.BIT, (e.bit, self.type_of(e.base)))
+        elif isinstance(e, n.IndirectBit):
+            self.place(e.base)
+            self.value(e.index, DINT)
+            bt = self.type_of(e.base)
+            assert isinstance(bt, Elementary)
+            self.emit(Op.IBIT, bt, e.span)
+        else:
+            raise AssertionError(f"not a place: {e}")
+
+    def value(self, e: n.Expr, want: DataType) -> None:
+        """Push the value of `e` converted to `want` (elementary targets only)."""
+        t = self.expr(e)
+        if isinstance(want, Elementary) and isinstance(t, Elementary):
+            self.convert(t, want)
+
+    def convert(self, src: DataType, dst: DataType) -> None:
+        if src is not dst and isinstance(src, Elementary) and isinstance(dst, Elementary):
+            self.emit(Op.CONV, (src, dst))
+
+    def expr(self, e: n.Expr) -> DataType:
+        t = self.type_of(e)
+        if id(e) in self.a.enum_of:
+            self.emit(Op.CONST, (self.a.enum_of[id(e)], DINT))
+            return DINT
+        if isinstance(e, n.Literal):
+            if e.type == "STRING":
+                self.emit(Op.CONST, (e.value, t))
+            else:
+                self.emit(Op.CONST, (e.value, t))
+            return t
+        if isinstance(e, n.Name) and id(e) in self.a.system_of:
+            self.emit(Op.SYS, self.a.system_of[id(e)])
+            return BOOL
+        if isinstance(e, n.Name | n.Member | n.Index | n.Bit | n.IndirectBit):
+            self.place(e)
+            if isinstance(t, Elementary):
+                self.emit(Op.LOAD, t)
+            else:
+                self.emit(Op.VALUE)
+            return t
+        if isinstance(e, n.Unary):
+            assert isinstance(t, Elementary)
+            self.value(e.operand, t)
+            self.emit(Op.NEG if e.op == "-" else Op.NOT, t)
+            return t
+        if isinstance(e, n.Binary):
+            return self.binary(e, t)
+        if isinstance(e, n.Call):
+            ins = self.a.call_of[id(e)]
+            self.value(e.args[0].value, self.type_of(e.args[0].value))
+            self.emit(Op.FN, (ins.key, t), e.span)
+            return t
+        raise AssertionError(f"cannot compile {e}")
+
+    def binary(self, e: n.Binary, t: DataType) -> DataType:
+        lt, rt = self.type_of(e.left), self.type_of(e.right)
+        if e.op in _CMP:
+            if isinstance(lt, StructType):  # STRING comparison
+                self.expr(e.left)
+                self.expr(e.right)
+                self.emit(Op.CMP, (e.op, lt))
+                return BOOL
+            assert isinstance(lt, Elementary) and isinstance(rt, Elementary)
+            ot = promote(lt, rt)
+            self.value(e.left, ot)
+            self.value(e.right, ot)
+            self.emit(Op.CMP, (e.op, ot))
+            return BOOL
+        assert isinstance(t, Elementary)
+        self.value(e.left, t)
+        self.value(e.right, t)
+        self.emit(Op.BIN, (e.op, t), e.span)
+        return t
+
+    # ------------------------------------------------------------ prescan
+    def prescan(self, body: list[n.Stmt]) -> None:
+        """Zero `[:=]` targets and run instructions' prescan actions (SPEC 3.2)."""
+        from ..instructions.registry import lookup_prescan
+
+        main_ops = self.ops
+        self.ops = self.code.prescan
+        for s in _walk(body):
+            if isinstance(s, n.Assign) and s.nonretentive:
+                t = self.type_of(s.target)
+                self.place(s.target)
+                self.emit(Op.CONST, (0, DINT))
+                if isinstance(t, Elementary):
+                    self.convert(DINT, t)
+                self.emit(Op.STORE, t, s.span)
+            elif isinstance(s, n.CallStmt) and id(s.call) in self.a.call_of:
+                ins = self.a.call_of[id(s.call)]
+                if ins.name != "JSR" and lookup_prescan(ins.name, "st") is not None:
+                    count = self.operands(s.call, ins)
+                    self.emit(Op.PRESCAN, (ins.key, count), s.span)
+        self.ops = main_ops
+
+
+def _walk(body: list[n.Stmt]):  # type: ignore[no-untyped-def]
+    for s in body:
+        yield s
+        if isinstance(s, n.If):
+            for _, b in s.branches:
+                yield from _walk(b)
+            if s.else_body:
+                yield from _walk(s.else_body)
+        elif isinstance(s, n.Case):
+            for arm in s.arms:
+                yield from _walk(arm.body)
+            if s.else_body:
+                yield from _walk(s.else_body)
+        elif isinstance(s, n.For | n.While | n.Repeat):
+            yield from _walk(s.body)
+
+
+def compile_routine(
+    model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None
+) -> Code:
+    return RoutineCompiler(model, analysis, routine, sites).compile()

@@ -1,0 +1,195 @@
+"""The simulated controller: virtual clock, prescan, scans, watched values, faults (SPEC 4)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from ..compiler.st_compiler import RoutineCompiler, compile_routine
+from ..semantics.checker import Checker
+from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
+from ..syntax import nodes as n
+from ..syntax.st_parser import parse_expression
+from ..vm.codegen import HELPERS, Translator
+from ..vm.context import ExecContext, MajorFault
+from ..vm.values import string_text
+from .loader import Loaded
+from .storage import allocate
+
+DEFAULT_WATCHDOG = 5_000_000
+
+
+@dataclass(slots=True)
+class Fault:
+    type: int
+    code: int
+    major: bool
+    message: str
+    file: str
+    line: int
+    column: int
+    count: int = 1
+
+    def to_json(self) -> dict[str, object]:
+        d: dict[str, object] = {
+            "type": self.type, "code": self.code, "major": self.major, "message": self.message,
+            "file": self.file, "line": self.line, "column": self.column,
+        }
+        if not self.major:
+            d["count"] = self.count
+        return d
+
+    def text(self) -> str:
+        kind = "major" if self.major else "minor"
+        return f"{self.file}:{self.line}:{self.column}: {kind} fault type {self.type} code {self.code}: {self.message}"
+
+
+class WatchError(ValueError):
+    """A --watch/--set expression does not name a valid tag reference."""
+
+
+class Controller:
+    """Holds tag storage and the translated routines; `scan()` runs one program scan."""
+
+    def __init__(self, loaded: Loaded, scan_period_ms: float = 1.0, watchdog: int = DEFAULT_WATCHDOG) -> None:
+        self.model = loaded.model
+        self.analysis = loaded.analysis
+        self.T = allocate(self.model)
+        self.ctx = ExecContext(scan_period_ms=scan_period_ms, budget=watchdog, program=self.model)
+        self.sites: list[tuple[str, n.Span]] = []
+        self.ns: dict[str, Any] = dict(HELPERS)
+        self.ns["_R"] = {}
+        self.routines: dict[str, Callable[..., None]] = {}
+        self.prescans: list[Callable[..., None]] = []
+        for i, r in enumerate(self.model.routines):
+            if r.language != "st":
+                continue
+            code = compile_routine(self.model, self.analysis, r, self.sites)
+            self.routines[r.name.upper()] = self._translate(code, code.ops, f"_routine{i}")
+            self.prescans.append(self._translate(code, code.prescan, f"_prescan{i}"))
+        self.ns["_R"].update(self.routines)
+        self.main = self.routines[self.model.main.upper()]
+        self.scans = 0
+        self.major_fault: Fault | None = None
+
+    def _translate(self, code: Any, ops: list, name: str) -> Callable[..., None]:
+        src = Translator(code, self.ns, name, ops).translate()
+        exec(compile(src, f"<logix {code.path}:{name}>", "exec"), self.ns)  # noqa: S102
+        return self.ns[name]  # type: ignore[no-any-return]
+
+    # ------------------------------------------------------------ running
+    def prescan(self) -> None:
+        self.ctx.steps = 0
+        for p in self.prescans:
+            p(self.T, self.ctx)
+
+    def scan(self) -> bool:
+        """Run one normal scan; False when the controller major-faulted."""
+        ctx = self.ctx
+        ctx.now_ms = self.scans * ctx.scan_period_ms
+        ctx.first_scan = self.scans == 0
+        ctx.steps = 0
+        if ctx.motion is not None:
+            ctx.motion.before_scan(ctx.now_ms)
+        try:
+            self.main(self.T, ctx)
+        except MajorFault as f:
+            self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
+            return False
+        except RecursionError:
+            self.major_fault = self._fault(4, 83, "JSR nesting too deep", ctx.site)
+            return False
+        finally:
+            self.scans += 1
+        return True
+
+    def _fault(self, type_: int, code: int, major: bool, message: str, site: int, count: int = 1) -> Fault:
+        path, span = self.sites[site] if 0 <= site < len(self.sites) else (self.model.routines[0].path, n.Span(1, 1, 1, 1))
+        return Fault(type_, code, major, message, path, span.line, span.col, count)
+
+    def faults(self) -> list[Fault]:
+        out = [
+            self._fault(f.type, f.code, False, f.message, f.site, f.count)
+            for f in self.ctx.minor_faults.values()
+        ]
+        out.sort(key=lambda f: (f.file, f.line, f.column))
+        if self.major_fault is not None:
+            out.append(self.major_fault)
+        return out
+
+    # ------------------------------------------------------------ watching and setting
+    def reference(self, text: str) -> tuple[Callable[[], object], DataType, Callable[[object], None]]:
+        """Getter, type and setter for a tag reference such as `Axis1.ActualPosition`."""
+        try:
+            expr = parse_expression(text.strip())
+        except ValueError as exc:
+            raise WatchError(str(exc)) from None
+        if not isinstance(expr, n.Name | n.Member | n.Index | n.Bit | n.IndirectBit):
+            raise WatchError(f"'{text}' is not a tag reference")
+        checker = Checker(self.model)
+        checker.a = self.analysis
+        before = len(self.analysis.diags)
+        t = checker.expr(expr)
+        new = self.analysis.diags[before:]
+        del self.analysis.diags[before:]
+        if t is None or new:
+            raise WatchError(f"'{text}': {new[0].message if new else 'not a tag reference'}")
+        rc = RoutineCompiler(self.model, self.analysis, n.Routine("watch", "st", "<watch>"), self.sites)
+        rc.place(expr)
+        place_ops = list(rc.ops)
+        from ..compiler.bytecode import Ins, Op
+
+        getter_ops = place_ops + [Ins(Op.LOAD, t) if isinstance(t, Elementary) else Ins(Op.VALUE)]
+        tr = Translator(rc.code, self.ns, "_w", getter_ops)
+        for ins in getter_ops:
+            tr.op(ins)
+        value_expr = tr.pop_val().expr
+        body = "\n".join(tr.lines).replace("\n        ", "\n    ")
+        fname = f"_watch{len(self.ns)}"
+        src = f"def {fname}(T, ctx):\n{body}\n    return {value_expr}\n" if tr.lines else f"def {fname}(T, ctx):\n    return {value_expr}\n"
+        exec(compile(src, "<watch>", "exec"), self.ns)  # noqa: S102
+        fn = self.ns[fname]
+
+        def setter(value: object) -> None:
+            if not isinstance(t, Elementary):
+                raise WatchError(f"'{text}' is a {t}: only elementary tags can be set")
+            store_ops = place_ops + [Ins(Op.CONST, (value, _literal_type(value, t))), Ins(Op.STORE, t)]
+            tr2 = Translator(rc.code, self.ns, "_s", store_ops)
+            tr2.indent = 1
+            for ins in store_ops:
+                tr2.op(ins)
+            sname = f"_set{len(self.ns)}"
+            exec(compile(f"def {sname}(T, ctx):\n" + "\n".join(tr2.lines) + "\n", "<set>", "exec"), self.ns)  # noqa: S102
+            self.ns[sname](self.T, self.ctx)
+
+        return (lambda: fn(self.T, self.ctx)), t, setter
+
+
+def _literal_type(value: object, target: Elementary) -> Elementary:
+    from ..semantics.types import DINT, LREAL
+
+    return LREAL if isinstance(value, float) else DINT
+
+
+def to_json_value(value: object, t: DataType | None) -> object:
+    """JSON form of a tag value: BOOL true/false, integers, floats, STRING text, objects."""
+    if isinstance(t, Elementary):
+        if t.kind is Kind.BOOL:
+            return bool(value)
+        if t.kind is Kind.REAL:
+            return float(value)  # type: ignore[arg-type]
+        return int(value)  # type: ignore[call-overload]
+    if isinstance(t, StructType):
+        assert isinstance(value, list)
+        if t.is_string:
+            return string_text(value).decode("latin-1")
+        return {
+            name: to_json_value(v, mt)
+            for (name, mt), v in zip(t.members, value, strict=True)
+            if name.upper() not in t.hidden
+        }
+    if isinstance(t, ArrayType):
+        assert isinstance(value, list)
+        return [to_json_value(v, t.elem) for v in value]
+    return value if isinstance(value, int | float | str | bool) or value is None else str(value)

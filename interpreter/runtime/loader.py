@@ -1,0 +1,73 @@
+"""Read input files into a checked program (syntax + semantics; nothing runs here)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..diagnostics import Diagnostic
+from ..semantics.checker import Analysis, check_program
+from ..semantics.program import ProgramModel, build_program
+from ..syntax import nodes as n
+from ..syntax.st_parser import parse_st
+
+MAX_FILE_BYTES = 64 * 1024 * 1024
+
+
+class InputError(Exception):
+    """A file cannot be used at all (missing, directory, binary...): exit code 2."""
+
+
+@dataclass(slots=True)
+class Loaded:
+    model: ProgramModel
+    analysis: Analysis
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+
+
+def read_text(path: Path) -> str:
+    if not path.exists():
+        raise InputError(f"{path}: no such file")
+    if path.is_dir():
+        raise InputError(f"{path}: is a directory, expected a .st file")
+    try:
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise InputError(f"{path}: file is too large ({size} bytes)")
+        data = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror}") from exc
+    if b"\x00" in data[:8192]:
+        raise InputError(f"{path}: looks like a binary file, not Logix source text")
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+
+
+def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
+    suffix = path.suffix.lower()
+    if suffix == ".st":
+        routine, diags = parse_st(read_text(path), str(path))
+        return [routine], diags
+    raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected .st)")
+
+
+def load(paths: list[Path]) -> Loaded:
+    """Parse and verify the files of one program (SPEC 2.4): routine name = file stem."""
+    if not paths:
+        raise InputError("no program file given")
+    routines: list[n.Routine] = []
+    diags: list[Diagnostic] = []
+    for p in paths:
+        rs, ds = parse_file(p)
+        routines.extend(rs)
+        diags.extend(ds)
+    model, mdiags = build_program(routines[0].program_name or routines[0].name, routines)
+    diags.extend(mdiags)
+    analysis = check_program(model)
+    diags.extend(analysis.diags)
+    diags.sort(key=lambda d: d.sort_key())
+    return Loaded(model, analysis, diags)

@@ -1,0 +1,666 @@
+"""Verification: resolve names and types, check statements and instruction calls (SPEC 7).
+
+Produces an Analysis (types of expressions, enumeration numbers, catalog entries of calls)
+that the compiler lowers, plus diagnostics. Never executes anything.
+"""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass, field
+
+from stdlib import Instruction, Operand, catalog
+
+from ..diagnostics import Diagnostic, diag
+from ..syntax import nodes as n
+from .program import ProgramModel, Tag, const_number
+from .types import (
+    BOOL,
+    DINT,
+    LREAL,
+    REAL,
+    ArrayType,
+    DataType,
+    Elementary,
+    StructType,
+    is_axis,
+    promote,
+)
+
+SYSTEM_FLAGS = {"S:FS": "FS", "S:N": "N", "S:Z": "Z", "S:V": "V", "S:C": "C", "S:MINOR": "MINOR"}
+ST_SYSTEM_FLAGS = {"S:FS"}
+LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
+REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
+
+
+@dataclass(slots=True)
+class FBCall:
+    """An IEC-style function block call on an instance tag: `camIn(Master := X, ...)`."""
+
+    instruction: Instruction
+    instance: n.Name
+    inputs: list[tuple[int, DataType, n.Expr]]  # member index, member type, value
+    outputs: list[tuple[int, DataType, n.Expr]]  # member index, member type, target
+
+
+@dataclass(slots=True)
+class Analysis:
+    type_of: dict[int, DataType] = field(default_factory=dict)
+    enum_of: dict[int, int] = field(default_factory=dict)
+    call_of: dict[int, Instruction] = field(default_factory=dict)
+    fb_of: dict[int, FBCall] = field(default_factory=dict)
+    tag_of: dict[int, Tag] = field(default_factory=dict)
+    system_of: dict[int, str] = field(default_factory=dict)
+    diags: list[Diagnostic] = field(default_factory=list)
+
+
+def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
+    for a in accepted:
+        if a == "ANY":
+            return True
+        if isinstance(t, Elementary):
+            if a == "ANY_ELEMENTARY" or a == t.name:
+                return True
+            if a == "ANY_INT" and t.is_integer:
+                return True
+            if a == "ANY_REAL" and t.is_real:
+                return True
+            if a == "ANY_NUM" and (t.is_integer or t.is_real):
+                return True
+            if a == "ANY_BIT" and (t.is_integer or t.is_bool):
+                return True
+        elif isinstance(t, StructType):
+            if a == t.name or (a == "AXIS" and is_axis(t)):
+                return True
+            if a in ("STRING", "STRING_FAMILY") and t.is_string:
+                return True
+        elif isinstance(t, ArrayType) and (a.startswith("ANY") or type_matches(t.elem, (a,))):
+            return True
+    return False
+
+
+def describe(t: DataType | None) -> str:
+    return "unknown" if t is None else str(t)
+
+
+class Checker:
+    """One pass over a ProgramModel's routines."""
+
+    def __init__(self, model: ProgramModel) -> None:
+        self.model = model
+        self.a = Analysis()
+        self.cat = catalog()
+        self.path = ""
+        self.language = "st"
+        self.loop_depth = 0
+        self.guard_depth = 0
+        self.for_vars: list[str] = []
+        self.motion_uses: dict[str, int] = {}
+
+    # ------------------------------------------------------------ entry
+    def run(self) -> Analysis:
+        for r in self.model.routines:
+            self.path = r.path
+            self.language = r.language
+            self.check_initialisers(r)
+            if r.language == "st":
+                self.stmts(r.body)
+        return self.a
+
+    def err(self, code: str, msg: str, span: n.Span) -> None:
+        self.a.diags.append(diag(code, msg, self.path, span))
+
+    # ------------------------------------------------------------ declarations
+    def check_initialisers(self, r: n.Routine) -> None:
+        for d in r.decls:
+            if d.init is None:
+                continue
+            for name, _ in d.names:
+                tag = self.model.tag(name)
+                if tag is not None and tag.init_path == r.path:
+                    self.check_init(d.init, tag.type)
+                    break
+
+    def check_init(self, init: n.Init, t: DataType) -> None:
+        if isinstance(init, n.ArrayInit):
+            if not isinstance(t, ArrayType):
+                if isinstance(t, StructType) and t.name == "COORDINATE_SYSTEM":
+                    return
+                self.err("E118", f"a list initialiser needs an array, not {t}", init.span)
+                return
+            if len(init.items) > t.size:
+                self.err("E118", f"{len(init.items)} elements given for an array of {t.size}", init.span)
+            for item in init.items:
+                self.check_init(item, t.elem)
+            return
+        if isinstance(init, n.StructInit):
+            if not isinstance(t, StructType):
+                self.err("E118", f"a structure initialiser needs a structure, not {t}", init.span)
+                return
+            for mname, mspan, value in init.members:
+                m = t.member(mname)
+                if m is None:
+                    self.err("E118", f"'{t.name}' has no member '{mname}'{self.suggest(mname, [x for x, _ in t.members])}", mspan)
+                    continue
+                mt = m[1]
+                if isinstance(value, n.ArrayInit) and isinstance(mt, ArrayType) and is_axis(mt.elem):
+                    for item in value.items:
+                        tag = self.model.tag(item.ident) if isinstance(item, n.Name) else None
+                        if tag is None or not is_axis(tag.type):
+                            self.err("E118", "Axes must name axis tags of this program", _init_span(item))
+                    if not 2 <= len(value.items) <= 3:
+                        self.err("E118", "a coordinate system has 2 or 3 axes", value.span)
+                    continue
+                self.check_init(value, mt)
+            return
+        # a single value
+        if isinstance(t, ArrayType):
+            self.err("E118", f"an array of {t.size} needs a list initialiser [..]", _init_span(init))
+            return
+        if isinstance(t, StructType):
+            if t.is_string and isinstance(init, n.Literal) and init.type == "STRING":
+                return
+            self.err("E118", f"a {t.name} needs a structure initialiser (member := value)", _init_span(init))
+            return
+        if isinstance(init, n.Literal) and init.type == "STRING":
+            self.err("E116", f"a STRING cannot initialise a {t}", init.span)
+            return
+        if const_number(init) is None:
+            self.err("E118", "an initial value must be a literal", _init_span(init))
+
+    # ------------------------------------------------------------ statements
+    def stmts(self, body: list[n.Stmt]) -> None:
+        for s in body:
+            self.stmt(s)
+
+    def stmt(self, s: n.Stmt) -> None:
+        if isinstance(s, n.Assign):
+            self.assign(s)
+        elif isinstance(s, n.CallStmt):
+            self.call_stmt(s.call)
+        elif isinstance(s, n.If):
+            self.guard_depth += 1
+            for cond, body in s.branches:
+                self.condition(cond)
+                self.stmts(body)
+            if s.else_body is not None:
+                self.stmts(s.else_body)
+            self.guard_depth -= 1
+        elif isinstance(s, n.Case):
+            self.case(s)
+        elif isinstance(s, n.For):
+            self.for_loop(s)
+        elif isinstance(s, n.While):
+            self.condition(s.cond)
+            self.loop_body(s.body)
+        elif isinstance(s, n.Repeat):
+            self.loop_body(s.body)
+            self.condition(s.cond)
+        elif isinstance(s, n.Exit):
+            if self.loop_depth == 0:
+                self.err("E127", "EXIT is only allowed inside FOR, WHILE or REPEAT", s.span)
+        elif isinstance(s, n.Unsupported):
+            self.err("E115", f"{s.keyword} is not part of Logix Structured Text", s.span)
+
+    def loop_body(self, body: list[n.Stmt]) -> None:
+        self.loop_depth += 1
+        self.guard_depth += 1
+        self.stmts(body)
+        self.loop_depth -= 1
+        self.guard_depth -= 1
+
+    def condition(self, e: n.Expr) -> None:
+        t = self.expr(e)
+        if t is not None and not (isinstance(t, Elementary)):
+            self.err("E121", f"a condition must be BOOL or a number, not {t}", e.span)
+
+    def case(self, s: n.Case) -> None:
+        t = self.expr(s.selector)
+        if t is not None and not (isinstance(t, Elementary) and (t.is_integer or t.is_bool)):
+            self.err("E121", f"a CASE selector must be an integer, not {t}", s.selector.span)
+        self.guard_depth += 1
+        for arm in s.arms:
+            for label in arm.labels:
+                parts = [label.low, label.high] if isinstance(label, n.CaseRange) else [label]
+                for p in parts:
+                    if const_number(p) is None:
+                        self.err("E114", "CASE labels must be literal numbers", p.span)
+                    else:
+                        self.expr(p)
+            self.stmts(arm.body)
+        if s.else_body is not None:
+            self.stmts(s.else_body)
+        self.guard_depth -= 1
+
+    def for_loop(self, s: n.For) -> None:
+        t = self.expr(s.var)
+        if t is not None and not (isinstance(t, Elementary) and t.is_integer):
+            self.err("E121", f"a FOR index must be an integer tag, not {t}", s.var.span)
+        if not isinstance(s.var, LVALUES):
+            self.err("E120", "a FOR index must be a tag", s.var.span)
+        for e in (s.start, s.end, s.step):
+            if e is not None:
+                et = self.expr(e)
+                if et is not None and not (isinstance(et, Elementary) and et.is_numeric):
+                    self.err("E121", f"FOR bounds must be numbers, not {et}", e.span)
+        self.for_vars.append(_text(s.var).upper())
+        self.loop_body(s.body)
+        self.for_vars.pop()
+
+    def assign(self, s: n.Assign) -> None:
+        tt = self.target(s.target)
+        vt = self.expr(s.value)
+        if _text(s.target).upper() in self.for_vars:
+            self.a.diags.append(
+                diag("W201", f"FOR index '{_text(s.target)}' is assigned inside its loop", self.path, s.target.span)
+            )
+        if tt is None or vt is None:
+            return
+        self.check_assignable(tt, vt, s.value.span)
+
+    def check_assignable(self, tt: DataType, vt: DataType, span: n.Span) -> None:
+        t_str = isinstance(tt, StructType) and tt.is_string
+        v_str = isinstance(vt, StructType) and vt.is_string
+        if t_str and v_str:
+            return
+        if t_str or v_str:
+            self.err("E116", f"cannot assign {vt} to {tt}", span)
+            return
+        if isinstance(tt, Elementary) and isinstance(vt, Elementary):
+            return
+        if tt is vt or (isinstance(tt, ArrayType) and tt == vt):
+            self.err("E121", f"structures and arrays are copied with COP, not ':=' ({tt})", span)
+            return
+        self.err("E121", f"cannot assign {vt} to {tt}", span)
+
+    def target(self, e: n.Expr) -> DataType | None:
+        if not isinstance(e, LVALUES):
+            self.err("E120", "only a tag, member, element or bit can be assigned", e.span)
+            self.expr(e)
+            return None
+        t = self.expr(e)
+        if isinstance(e, n.Member):
+            bt = self.a.type_of.get(id(e.base))
+            if isinstance(bt, StructType) and e.name.upper() in bt.readonly:
+                self.err("E120", f"{bt.name}.{bt.member_name(e.name)} is read-only", e.name_span)
+        if isinstance(e, n.Name) and id(e) in self.a.system_of:
+            self.err("E120", f"{e.ident} is read-only", e.span)
+        return t
+
+    # ------------------------------------------------------------ calls
+    def call_stmt(self, c: n.Call) -> None:
+        tag = self.model.tag(c.name)
+        if tag is not None and isinstance(tag.type, StructType):
+            ins = self.cat.instruction(tag.type.name, "st")
+            if ins is not None:
+                self.fb_call(c, tag, ins)
+                return
+        ins = self.cat.instruction(c.name, self.language)
+        if ins is None:
+            other = self.cat.instruction_any(c.name)
+            if other is not None:
+                self.err("E126", f"{c.name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}", c.name_span)
+            else:
+                names = sorted({i.name for i in self.cat.instructions})
+                self.err("E103", f"unknown instruction '{c.name}'{self.suggest(c.name, names)}", c.name_span)
+            for a in c.args:
+                self.expr(a.value)
+            return
+        if ins.kind == "function":
+            self.err("E126", f"{ins.name} is a function: use it in an expression", c.name_span)
+            return
+        self.a.call_of[id(c)] = ins
+        self.operands(c, ins)
+        if ins.transitional and self.language == "st" and self.guard_depth == 0:
+            self.a.diags.append(
+                diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, c.span)
+            )
+
+    def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
+        st = tag.type
+        assert isinstance(st, StructType)
+        inst = n.Name(c.name, c.name_span)
+        self.a.tag_of[id(inst)] = tag
+        self.a.type_of[id(inst)] = st
+        fb = FBCall(ins, inst, [], [])
+        for a in c.args:
+            if a.name is None:
+                self.err("E130", "function block parameters are given by name (Name := value)", a.span)
+                continue
+            out = a.name.endswith("=>")
+            mname = a.name[:-2] if out else a.name
+            m = st.member(mname)
+            if m is None:
+                names = [x for x, _ in st.members]
+                self.err("E102", f"'{st.name}' has no parameter '{mname}'{self.suggest(mname, names)}", a.span)
+                self.expr(a.value)
+                continue
+            if out:
+                vt = self.target(a.value)
+                if vt is not None:
+                    self.check_assignable(vt, m[1], a.span)
+                fb.outputs.append((m[0], m[1], a.value))
+            else:
+                vt = self.expr(a.value)
+                if vt is not None and isinstance(m[1], Elementary):
+                    self.check_assignable(m[1], vt, a.value.span)
+                fb.inputs.append((m[0], m[1], a.value))
+        self.a.fb_of[id(c)] = fb
+
+    def operands(self, c: n.Call, ins: Instruction) -> None:
+        for a in c.args:
+            if a.name is not None:
+                self.err("E130", "named parameters are only for function block instances", a.span)
+                return
+        args = [a.value for a in c.args]
+        ops = ins.operands
+        required = sum(1 for o in ops if not o.optional)
+        if len(args) < required or (len(args) > len(ops) and not ins.variadic):
+            expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
+            self.err("E104", f"{ins.name} takes {expect} operands, {len(args)} given", c.span)
+            for e in args:
+                self.expr(e)
+            return
+        for i, e in enumerate(args):
+            op = ops[i] if i < len(ops) else ops[-1]
+            self.operand(ins, op, e, i)
+        if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
+            self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
+
+    def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
+        if op.enum is not None and self.enum_operand(ins, op, e):
+            return
+        if op.format == "routine":
+            if not isinstance(e, n.Name):
+                self.err("E124", "JSR needs a routine name", e.span)
+            elif self.model.routine(e.ident) is None:
+                names = [r.name for r in self.model.routines]
+                self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
+            return
+        if op.format == "label":
+            return
+        if isinstance(e, n.Placeholder):
+            return
+        if op.format == "array":
+            self.array_operand(ins, op, e)
+            return
+        t = self.expr(e)
+        is_tag = isinstance(e, LVALUES) and id(e) not in self.a.enum_of
+        if op.format == "tag" and not is_tag:
+            self.err("E106", f"{ins.name} operand {op.name} must be a tag", e.span)
+            return
+        if op.format == "immediate" and is_tag:
+            self.err("E107", f"{ins.name} operand {op.name} must be an immediate value", e.span)
+            return
+        if op.dir in ("out", "inout") and not is_tag and op.format != "immediate":
+            self.err("E106", f"{ins.name} operand {op.name} is written: it must be a tag", e.span)
+            return
+        if t is None:
+            return
+        if not type_matches(t, op.types):
+            if any(x == "AXIS" for x in op.types) or is_axis(t):
+                self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)
+            else:
+                self.err("E105", f"{ins.name} operand {op.name} does not accept {t} (accepts {', '.join(op.types)})", e.span)
+            return
+        if t is not None and isinstance(t, StructType) and t.name == "MOTION_INSTRUCTION":
+            key = _text(e).upper()
+            if key in self.motion_uses:
+                self.a.diags.append(
+                    diag("W203", f"{_text(e)} is also the control tag of another instruction (line {self.motion_uses[key]})", self.path, e.span)
+                )
+            else:
+                self.motion_uses[key] = e.span.line
+
+    def array_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
+        base = e.base if isinstance(e, n.Index) else e
+        t = self.expr(e)
+        bt = self.a.type_of.get(id(base)) if isinstance(e, n.Index) else t
+        if not isinstance(bt, ArrayType):
+            if t is not None:
+                self.err("E105", f"{ins.name} operand {op.name} needs an array tag, not {t}", e.span)
+            return
+        if isinstance(bt.elem, StructType) and bt.elem.name == "CAM_PROFILE" and isinstance(e, n.Index):
+            if any(const_number(i) != 0 for i in e.indices):
+                self.err("E111", f"{ins.name} operand {op.name}: a CAM_PROFILE array is given as element [0]", e.span)
+        if not type_matches(bt.elem, op.types):
+            self.err("E105", f"{ins.name} operand {op.name} does not accept {bt} (accepts {', '.join(op.types)})", e.span)
+
+    def enum_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> bool:
+        """Resolve enumeration text or number; True when `e` was handled as an enumeration."""
+        assert op.enum is not None
+        en = self.cat.enum(op.enum)
+        text = _enum_text(e)
+        if text is not None:
+            if isinstance(e, n.Name) and self.model.tag(e.ident) is not None and en.lookup(text) is None:
+                return False  # a tag, checked as a value below
+            v = en.lookup(text)
+            if v is None:
+                labels = [x.label for x in en.values]
+                self.err("E108", f"'{text}' is not a value of {ins.name} {op.name}{self.suggest(text.lower(), labels)}", e.span)
+            else:
+                self.a.enum_of[id(e)] = v.value
+                self.a.type_of[id(e)] = DINT
+            return True
+        num = const_number(e)
+        if isinstance(num, int):
+            if en.by_value(num) is None and not (op.format == "value" and False):
+                vals = ", ".join(f"{x.value} {x.label}" for x in en.values)
+                self.err("E109", f"{num} is not a value of {ins.name} {op.name} ({vals})", e.span)
+            else:
+                self.a.enum_of[id(e)] = num
+                self.a.type_of[id(e)] = DINT
+            return True
+        return False
+
+    @staticmethod
+    def suggest(word: str, options: list[str]) -> str:
+        close = difflib.get_close_matches(word, options, n=1, cutoff=0.6)
+        if not close:
+            lowered = {o.lower(): o for o in options}
+            close = [lowered[x] for x in difflib.get_close_matches(word.lower(), list(lowered), n=1, cutoff=0.6)]
+        return f" (did you mean '{close[0]}'?)" if close else ""
+
+    # ------------------------------------------------------------ expressions
+    def expr(self, e: n.Expr) -> DataType | None:
+        t = self._expr(e)
+        if t is not None:
+            self.a.type_of[id(e)] = t
+        return t
+
+    def _expr(self, e: n.Expr) -> DataType | None:  # noqa: C901
+        if isinstance(e, n.Literal):
+            if e.type == "STRING":
+                return self.model.types.get("STRING")
+            return self.model.types.get(e.type)
+        if isinstance(e, n.Name):
+            return self.name(e)
+        if isinstance(e, n.Member):
+            bt = self.expr(e.base)
+            if bt is None:
+                return None
+            if not isinstance(bt, StructType):
+                self.err("E102", f"{_text(e.base)} is a {bt}: it has no member '{e.name}'", e.name_span)
+                return None
+            m = bt.member(e.name)
+            if m is None or e.name.upper() in bt.hidden:
+                names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
+                self.err("E102", f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}", e.name_span)
+                return None
+            return m[1]
+        if isinstance(e, n.Index):
+            bt = self.expr(e.base)
+            for i in e.indices:
+                it = self.expr(i)
+                if it is not None and not (isinstance(it, Elementary) and (it.is_integer or it.is_bool)):
+                    self.err("E121", f"a subscript must be an integer, not {it}", i.span)
+            if bt is None:
+                return None
+            if not isinstance(bt, ArrayType):
+                self.err("E110", f"{_text(e.base)} is not an array", e.span)
+                return None
+            if len(e.indices) != len(bt.dims):
+                self.err("E110", f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given", e.span)
+                return None
+            for i, size in zip(e.indices, bt.dims, strict=True):
+                v = const_number(i)
+                if isinstance(v, int) and not 0 <= v < size:
+                    self.err("E122", f"subscript {v} is outside 0..{size - 1}", i.span)
+            return bt.elem
+        if isinstance(e, n.Bit):
+            bt = self.expr(e.base)
+            if bt is None:
+                return None
+            if not (isinstance(bt, Elementary) and bt.is_integer):
+                self.err("E121", f"bit access needs an integer, not {bt}", e.span)
+                return None
+            if not 0 <= e.bit < bt.bits:
+                self.err("E122", f"bit {e.bit} is outside 0..{bt.bits - 1} of a {bt}", e.span)
+                return None
+            return BOOL
+        if isinstance(e, n.IndirectBit):
+            bt = self.expr(e.base)
+            it = self.expr(e.index)
+            if it is not None and not (isinstance(it, Elementary) and it.is_integer):
+                self.err("E121", f"a bit number must be an integer, not {it}", e.index.span)
+            if bt is None:
+                return None
+            if not (isinstance(bt, Elementary) and bt.is_integer):
+                self.err("E121", f"bit access needs an integer, not {bt}", e.span)
+                return None
+            return BOOL
+        if isinstance(e, n.Unary):
+            t = self.expr(e.operand)
+            if t is None:
+                return None
+            if not isinstance(t, Elementary):
+                self.err("E116" if isinstance(t, StructType) and t.is_string else "E121", f"{e.op} cannot be applied to {t}", e.span)
+                return None
+            if e.op == "NOT":
+                if t.is_real:
+                    self.err("E121", "NOT needs BOOL or an integer, not a REAL", e.span)
+                    return None
+                return t
+            return DINT if t.is_bool else t
+        if isinstance(e, n.Binary):
+            return self.binary(e)
+        if isinstance(e, n.Call):
+            return self.function(e)
+        if isinstance(e, n.EnumText):
+            self.err("E108", f"'{e.text}' is only valid as an enumerated operand", e.span)
+            return None
+        if isinstance(e, n.Placeholder):
+            return None
+        return None
+
+    def name(self, e: n.Name) -> DataType | None:
+        key = e.ident.upper()
+        if key in SYSTEM_FLAGS:
+            if self.language == "st" and key not in ST_SYSTEM_FLAGS:
+                self.err("E123", f"{e.ident} is available in ladder only", e.span)
+                return None
+            self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
+            return BOOL
+        tag = self.model.tag(e.ident)
+        if tag is None:
+            names = [t.name for t in self.model.tags.values()]
+            self.err("E101", f"undefined tag '{e.ident}'{self.suggest(e.ident, names)}", e.span)
+            return None
+        self.a.tag_of[id(e)] = tag
+        return tag.type
+
+    def binary(self, e: n.Binary) -> DataType | None:
+        lt = self.expr(e.left)
+        rt = self.expr(e.right)
+        if lt is None or rt is None:
+            return None
+        l_str = isinstance(lt, StructType) and lt.is_string
+        r_str = isinstance(rt, StructType) and rt.is_string
+        if l_str or r_str:
+            if l_str and r_str and e.op in ("=", "<>", "<", "<=", ">", ">="):
+                return BOOL
+            self.err("E116", f"'{e.op}' cannot mix STRING and numbers" if l_str != r_str else f"'{e.op}' is not defined for STRING", e.span)
+            return None
+        if not isinstance(lt, Elementary) or not isinstance(rt, Elementary):
+            bad = lt if not isinstance(lt, Elementary) else rt
+            self.err("E121", f"'{e.op}' cannot be applied to {bad}", e.span)
+            return None
+        op = e.op
+        if op in ("=", "<>", "<", "<=", ">", ">="):
+            return BOOL
+        if op in ("AND", "OR", "XOR"):
+            if lt.is_real or rt.is_real:
+                self.err("E121", f"{op} needs BOOL or integers, not REAL", e.span)
+                return None
+            return promote(lt, rt)
+        if op == "**":
+            if lt.is_real or rt.is_real:
+                return LREAL if LREAL in (lt, rt) else REAL
+            return promote(lt, rt) if not (lt.is_bool and rt.is_bool) else DINT
+        t = promote(lt, rt)
+        if op == "MOD" and t.is_real:
+            return t
+        return DINT if t.is_bool else t
+
+    def function(self, c: n.Call) -> DataType | None:
+        ins = self.cat.instruction(c.name, "st")
+        if ins is None or ins.kind != "function":
+            for a in c.args:
+                self.expr(a.value)
+            if ins is not None:
+                self.err("E126", f"{ins.name} is an instruction: call it as a statement", c.name_span)
+            else:
+                fnames = sorted({i.name for i in self.cat.instructions if i.kind == "function"})
+                self.err("E103", f"unknown function '{c.name}'{self.suggest(c.name.upper(), fnames)}", c.name_span)
+            return None
+        self.a.call_of[id(c)] = ins
+        if len(c.args) != len(ins.operands):
+            self.err("E104", f"{ins.name} takes {len(ins.operands)} argument(s), {len(c.args)} given", c.span)
+            return None
+        t = self.expr(c.args[0].value)
+        if t is None:
+            return None
+        if not (isinstance(t, Elementary) and not t.is_bool):
+            self.err("E105", f"{ins.name} needs a number, not {t}", c.args[0].span)
+            return None
+        if ins.name in REAL_FUNCTIONS:
+            return LREAL if t is LREAL else REAL
+        return t
+
+
+def _enum_text(e: n.Expr) -> str | None:
+    """Operand text that may be an enumeration word (`Once`, `%ofTime`, `S-Curve`)."""
+    if isinstance(e, n.Name):
+        return e.ident
+    if isinstance(e, n.EnumText):
+        return e.text
+    if isinstance(e, n.Binary) and e.op == "-":
+        left, right = _enum_text(e.left), _enum_text(e.right)
+        if left is not None and right is not None:
+            return f"{left}-{right}"
+    return None
+
+
+def _text(e: object) -> str:
+    """Canonical source text of an operand (for identity checks and messages)."""
+    if isinstance(e, n.Name):
+        return e.ident
+    if isinstance(e, n.Member):
+        return f"{_text(e.base)}.{e.name}"
+    if isinstance(e, n.Index):
+        return f"{_text(e.base)}[{','.join(_text(i) for i in e.indices)}]"
+    if isinstance(e, n.Bit):
+        return f"{_text(e.base)}.{e.bit}"
+    if isinstance(e, n.IndirectBit):
+        return f"{_text(e.base)}.[{_text(e.index)}]"
+    if isinstance(e, n.Literal):
+        return e.text
+    return "?"
+
+
+def _init_span(init: object) -> n.Span:
+    return init.span  # type: ignore[attr-defined, no-any-return]
+
+
+def check_program(model: ProgramModel) -> Analysis:
+    return Checker(model).run()

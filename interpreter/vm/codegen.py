@@ -1,0 +1,441 @@
+"""VM tier: translate a routine's bytecode once into a Python function.
+
+The operand stack is evaluated symbolically at translation time: each stack entry becomes
+a Python expression, each store or call a Python statement, and the structured control ops
+map onto `if`/`while`. Exact Logix arithmetic is kept by emitting the wrap / float32 /
+fault helpers below (docs/decisions/0003-vm-design.md).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from ..compiler.bytecode import Code, Ins, Op
+from ..instructions.registry import lookup, lookup_prescan
+from ..semantics.types import BOOL, DataType, Elementary, Kind, StructType
+from .context import ExecContext, MajorFault
+from .refs import ArrayRef, BitRef, Ref
+from .values import f32, real_to_int, set_string, string_text, wrap
+
+_PY_CMP = {"=": "==", "<>": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+# ------------------------------------------------------------------ runtime helpers
+def _xf(site: int) -> int:
+    raise MajorFault(4, 20, "array subscript out of range", site)
+
+
+def _wd(site: int) -> None:
+    raise MajorFault(6, 1, "task watchdog: the scan executed too many statements", site)
+
+
+def _idiv(ctx: ExecContext, a: int, b: int, site: int, bits: int, signed: bool) -> int:
+    if b == 0:
+        ctx.minor(4, 4, "division by zero", site)
+        return a  # Logix: an integer divide by zero leaves Source A (RM003)
+    q = abs(a) // abs(b)
+    return wrap(q if (a >= 0) == (b >= 0) else -q, bits, signed)
+
+
+def _imod(ctx: ExecContext, a: int, b: int, site: int, bits: int, signed: bool) -> int:
+    if b == 0:
+        ctx.minor(4, 4, "MOD by zero", site)
+        return 0
+    q = abs(a) // abs(b)
+    q = q if (a >= 0) == (b >= 0) else -q
+    return wrap(a - q * b, bits, signed)
+
+
+def _fdiv(ctx: ExecContext, a: float, b: float, site: int, single: bool) -> float:
+    if b == 0.0:
+        ctx.minor(4, 4, "division by zero", site)
+        if a == 0.0 or math.isnan(a):
+            r = math.nan
+        else:
+            r = math.copysign(math.inf, a) * math.copysign(1.0, b)
+    else:
+        r = a / b
+    return f32(r) if single else r
+
+
+def _fmod(ctx: ExecContext, a: float, b: float, site: int, single: bool) -> float:
+    if b == 0.0:
+        ctx.minor(4, 4, "MOD by zero", site)
+        return math.nan
+    r = a - math.trunc(a / b) * b
+    return f32(r) if single else r
+
+
+def _ipow(ctx: ExecContext, a: int, b: int, site: int, bits: int, signed: bool) -> int:
+    if b < 0:
+        if a == 0:
+            ctx.minor(4, 4, "zero raised to a negative power", site)
+            return 0
+        if a == 1:
+            return 1
+        if a == -1:
+            return -1 if b % 2 else 1
+        return 0
+    return wrap(pow(a, b, 1 << bits), bits, signed)
+
+
+def _fpow(a: float, b: float, single: bool) -> float:
+    try:
+        r = math.pow(a, b)
+    except (ValueError, OverflowError):
+        r = math.nan if a < 0 else math.inf
+    return f32(r) if single else r
+
+
+def _setbit(v: int, bit: int, on: object, bits: int, signed: bool) -> int:
+    v = v | (1 << bit) if on else v & ~(1 << bit)
+    return wrap(v, bits, signed)
+
+
+def _sset(dst: list, src: object) -> None:
+    set_string(dst, src if isinstance(src, bytes) else string_text(src))  # type: ignore[arg-type]
+
+
+def _scmp(a: object, b: object) -> int:
+    x = a if isinstance(a, bytes) else string_text(a)  # type: ignore[arg-type]
+    y = b if isinstance(b, bytes) else string_text(b)  # type: ignore[arg-type]
+    return (x > y) - (x < y)
+
+
+def _r2i(x: float) -> int:
+    return real_to_int(x)
+
+
+HELPERS: dict[str, Any] = {
+    "_xf": _xf, "_wd": _wd, "_idiv": _idiv, "_imod": _imod, "_fdiv": _fdiv, "_fmod": _fmod,
+    "_ipow": _ipow, "_fpow": _fpow, "_setbit": _setbit, "_sset": _sset, "_scmp": _scmp,
+    "_f32": f32, "_r2i": _r2i, "_wrap": wrap, "_Ref": Ref, "_BitRef": BitRef,
+    "_ArrayRef": ArrayRef, "MajorFault": MajorFault,
+}
+
+
+# ------------------------------------------------------------------ translation
+@dataclass(slots=True)
+class _Val:
+    expr: str
+    type: DataType | None
+
+
+@dataclass(slots=True)
+class _Place:
+    container: str
+    key: str
+    bit: str | None = None
+    owner: Elementary | None = None  # type of the integer holding `bit`
+
+
+def _is_simple(expr: str) -> bool:
+    return expr.replace("_", "").replace("-", "").isalnum() or (
+        expr.startswith("T[") and expr.endswith("]") and expr[2:-1].isdigit()
+    )
+
+
+def conv_expr(x: str, src: DataType | None, dst: DataType) -> str:
+    """Python expression converting `x` (of type src) for storage as dst."""
+    if not isinstance(dst, Elementary) or src is dst:
+        return x
+    assert isinstance(src, Elementary)
+    if dst.kind is Kind.REAL:
+        if dst.bits == 64:
+            return f"float({x})" if src.kind is not Kind.REAL else x
+        return f"_f32({x})"
+    if dst.kind is Kind.BOOL:
+        return f"(1 if {x} else 0)"
+    if src.kind is Kind.REAL:
+        x = f"_r2i({x})"
+    elif src.kind is Kind.BOOL:
+        return x
+    elif src.kind is Kind.INT and (src.bits < dst.bits and (dst.signed or not src.signed)):
+        return x  # value always fits
+    return _wrap_expr(x, dst)
+
+
+def _wrap_expr(x: str, t: Elementary) -> str:
+    mask = (1 << t.bits) - 1
+    if t.signed:
+        half = 1 << (t.bits - 1)
+        return f"((({x}) + {half}) & {mask}) - {half}"
+    return f"(({x}) & {mask})"
+
+
+class Translator:
+    """Bytecode -> Python source for one routine (main code or prescan code)."""
+
+    def __init__(self, code: Code, ns: dict[str, Any], func_name: str, ops: list[Ins]) -> None:
+        self.code = code
+        self.ns = ns
+        self.func_name = func_name
+        self.ops = ops
+        self.lines: list[str] = []
+        self.indent = 1
+        self.stack: list[_Val | _Place] = []
+        self.block_has_code: list[bool] = []
+        self.tmp = 0
+
+    def const_name(self, value: object) -> str:
+        name = f"_k{len(self.ns)}"
+        self.ns[name] = value
+        return name
+
+    def line(self, text: str) -> None:
+        self.lines.append("    " * self.indent + text)
+        if self.block_has_code:
+            self.block_has_code[-1] = True
+
+    def open_block(self, header: str) -> None:
+        self.line(header)
+        self.indent += 1
+        self.block_has_code.append(False)
+
+    def close_block(self) -> None:
+        if not self.block_has_code.pop():
+            self.lines.append("    " * self.indent + "pass")
+        self.indent -= 1
+
+    def pop_val(self) -> _Val:
+        v = self.stack.pop()
+        assert isinstance(v, _Val), v
+        return v
+
+    def pop_place(self) -> _Place:
+        p = self.stack.pop()
+        assert isinstance(p, _Place), p
+        return p
+
+    def fresh(self) -> str:
+        self.tmp += 1
+        return f"_t{self.tmp}"
+
+    def checked(self, expr: str, size: int, site: int) -> str:
+        if expr.lstrip("-").isdigit():
+            v = int(expr)
+            return expr if 0 <= v < size else f"_xf({site})"
+        if _is_simple(expr):
+            return f"({expr} if 0 <= {expr} < {size} else _xf({site}))"
+        t = self.fresh()
+        return f"({t} if 0 <= ({t} := {expr}) < {size} else _xf({site}))"
+
+    def translate(self) -> str:
+        head = [f"def {self.func_name}(T, ctx):", "    _s = 0", "    _W = ctx.budget - ctx.steps", "    try:"]
+        self.indent = 2
+        self.block_has_code.append(False)
+        for ins in self.ops:
+            self.op(ins)
+        if not self.block_has_code[-1]:
+            self.line("pass")
+        assert not self.stack, f"stack not empty after {self.code.name}: {self.stack}"
+        tail = ["    finally:", "        ctx.steps += _s"]
+        return "\n".join(head + self.lines + tail) + "\n"
+
+    def op(self, ins: Ins) -> None:  # noqa: C901
+        op, arg, site = ins.op, ins.arg, ins.site
+        st = self.stack
+        if op is Op.TAG:
+            st.append(_Place("T", str(arg)))
+        elif op is Op.MEMBER:
+            p = self.pop_place()
+            st.append(_Place(f"{p.container}[{p.key}]", str(arg)))
+        elif op is Op.INDEX:
+            sizes: tuple[int, ...] = arg  # type: ignore[assignment]
+            idx = [self.pop_val().expr for _ in sizes][::-1]
+            p = self.pop_place()
+            parts = []
+            stride = 1
+            for size, expr in zip(reversed(sizes), reversed(idx), strict=True):
+                c = self.checked(expr, size, site)
+                parts.append(c if stride == 1 else f"{c} * {stride}")
+                stride *= size
+            st.append(_Place(f"{p.container}[{p.key}]", " + ".join(reversed(parts))))
+        elif op is Op.BIT:
+            bit, owner = arg  # type: ignore[misc]
+            p = self.pop_place()
+            st.append(_Place(p.container, p.key, str(bit), owner))
+        elif op is Op.IBIT:
+            owner = arg
+            b = self.pop_val().expr
+            p = self.pop_place()
+            st.append(_Place(p.container, p.key, self.checked(b, owner.bits, site), owner))  # type: ignore[union-attr]
+        elif op is Op.CONST:
+            value, t = arg  # type: ignore[misc]
+            if isinstance(value, float) and (math.isinf(value) or math.isnan(value)):
+                expr = self.const_name(value)
+            elif isinstance(value, bytes | str):
+                expr = repr(value)
+            else:
+                if isinstance(t, Elementary) and t.kind is Kind.REAL and t.bits == 32:
+                    value = f32(float(value))
+                expr = repr(value)
+                if isinstance(value, int) and value < 0:
+                    expr = f"({expr})"
+            st.append(_Val(expr, t))
+        elif op is Op.SYS:
+            st.append(_Val("ctx.first_scan" if arg == "FS" else f"ctx.status.get({arg!r}, 0)", BOOL))
+        elif op is Op.LOAD:
+            p = self.pop_place()
+            if p.bit is not None:
+                st.append(_Val(f"(({p.container}[{p.key}] >> {p.bit}) & 1)", BOOL))
+            else:
+                st.append(_Val(f"{p.container}[{p.key}]", arg))  # type: ignore[arg-type]
+        elif op is Op.VALUE:
+            p = self.pop_place()
+            st.append(_Val(f"{p.container}[{p.key}]", None))
+        elif op is Op.STORE:
+            v = self.pop_val()
+            p = self.pop_place()
+            t: DataType = arg  # type: ignore[assignment]
+            if isinstance(t, StructType):
+                self.line(f"_sset({p.container}[{p.key}], {v.expr})")
+            elif p.bit is not None:
+                pt = p.owner
+                assert pt is not None
+                self.line(
+                    f"{p.container}[{p.key}] = _setbit({p.container}[{p.key}], {p.bit}, {v.expr}, {pt.bits}, {pt.signed})"
+                )
+            else:
+                self.line(f"{p.container}[{p.key}] = {conv_expr(v.expr, v.type, t)}")
+        elif op is Op.REF:
+            p = self.pop_place()
+            t = arg  # type: ignore[assignment]
+            if p.bit is not None:
+                st.append(_Val(f"_BitRef({p.container}, {p.key}, {p.bit}, {self.const_name(p.owner)})", None))
+            else:
+                st.append(_Val(f"_Ref({p.container}, {p.key}, {self.const_name(t)})", None))
+        elif op is Op.AREF:
+            elem, dims, indexed = arg  # type: ignore[misc]
+            p = self.pop_place()
+            if indexed:
+                st.append(_Val(f"_ArrayRef({p.container}, {p.key}, {self.const_name(elem)}, {dims!r})", None))
+            else:
+                st.append(_Val(f"_ArrayRef({p.container}[{p.key}], 0, {self.const_name(elem)}, {dims!r})", None))
+        elif op is Op.CONV:
+            src, dst = arg  # type: ignore[misc]
+            v = self.pop_val()
+            st.append(_Val(conv_expr(v.expr, src, dst), dst))
+        elif op is Op.NEG:
+            v = self.pop_val()
+            t = arg  # type: ignore[assignment]
+            assert isinstance(t, Elementary)
+            if t.kind is Kind.REAL:
+                st.append(_Val(f"(-{v.expr})", t))
+            else:
+                st.append(_Val(_wrap_expr(f"-{v.expr}", t), t))
+        elif op is Op.NOT:
+            v = self.pop_val()
+            t = arg  # type: ignore[assignment]
+            assert isinstance(t, Elementary)
+            if t.kind is Kind.BOOL:
+                st.append(_Val(f"(not {v.expr})", BOOL))
+            else:
+                st.append(_Val(_wrap_expr(f"~{v.expr}", t), t))
+        elif op is Op.BIN:
+            self.binary(arg, site)  # type: ignore[arg-type]
+        elif op is Op.CMP:
+            cmp, t = arg  # type: ignore[misc]
+            b, a = self.pop_val(), self.pop_val()
+            if isinstance(t, StructType):
+                st.append(_Val(f"(_scmp({a.expr}, {b.expr}) {_PY_CMP[cmp]} 0)", BOOL))
+            else:
+                st.append(_Val(f"({a.expr} {_PY_CMP[cmp]} {b.expr})", BOOL))
+        elif op is Op.FN:
+            key, t = arg  # type: ignore[misc]
+            v = self.pop_val()
+            fn = self.impl(key)
+            call = f"{fn}(ctx, True, {v.expr})"
+            st.append(_Val(conv_expr(call, _result_src(t), t), t))
+        elif op is Op.CALL or op is Op.PRESCAN:
+            key, count = arg[0], arg[1]  # type: ignore[index]
+            args = [self.pop_val().expr for _ in range(count)][::-1]
+            fn = self.impl(key, prescan=op is Op.PRESCAN)
+            self.line(f"ctx.site = {site}")
+            self.line(f"{fn}(ctx, True{''.join(', ' + a for a in args)})")
+        elif op is Op.JSR:
+            self.line(f"ctx.site = {site}")
+            self.line("ctx.steps += _s; _s = 0")
+            self.line(f"_R[{str(arg).upper()!r}](T, ctx)")
+            self.line("_W = ctx.budget - ctx.steps")
+        elif op is Op.IF:
+            self.open_block(f"if {self.pop_val().expr}:")
+        elif op is Op.ELSE:
+            self.close_block()
+            self.open_block("else:")
+        elif op is Op.END:
+            self.close_block()
+        elif op is Op.LOOP:
+            self.open_block("while True:")
+        elif op is Op.BREAK:
+            self.line("break")
+        elif op is Op.BREAK_IFNOT:
+            self.line(f"if not {self.pop_val().expr}: break")
+        elif op is Op.TSET:
+            self.line(f"_v{arg} = {self.pop_val().expr}")
+        elif op is Op.TGET:
+            k, t = arg  # type: ignore[misc]
+            st.append(_Val(f"_v{k}", t))
+        elif op is Op.STEP:
+            count, in_loop = arg  # type: ignore[misc]
+            self.line(f"_s += {count}")
+            if in_loop:
+                self.line(f"if _s > _W: _wd({site})")
+        else:  # pragma: no cover - every op is handled above
+            raise AssertionError(op)
+
+    def impl(self, key: str, prescan: bool = False) -> str:
+        name = key.split("@")[0]
+        lang = "rll" if key.endswith("@rll") else "st"
+        fn = lookup_prescan(name, lang) if prescan else lookup(name, lang)
+        if fn is None:
+            raise LookupError(f"no implementation for {key}")
+        return self.const_name(fn)
+
+    def binary(self, arg: tuple[str, Elementary], site: int) -> None:
+        op, t = arg
+        b, a = self.pop_val(), self.pop_val()
+        x, y = a.expr, b.expr
+        st = self.stack
+        if op in ("AND", "OR", "XOR"):
+            if t.kind is Kind.BOOL:
+                expr = {"AND": f"({x} and {y})", "OR": f"({x} or {y})", "XOR": f"(({x}) != ({y}))"}[op]
+                st.append(_Val(f"(1 if {expr} else 0)" if op != "XOR" else expr, BOOL))
+            else:
+                sym = {"AND": "&", "OR": "|", "XOR": "^"}[op]
+                st.append(_Val(f"({x} {sym} {y})", t))
+            return
+        single = t.bits == 32
+        if t.kind is Kind.REAL:
+            if op in "+-*":
+                e = f"({x} {op} {y})"
+                st.append(_Val(f"_f32{e}" if single else e, t))
+            elif op == "/":
+                st.append(_Val(f"_fdiv(ctx, {x}, {y}, {site}, {single})", t))
+            elif op == "MOD":
+                st.append(_Val(f"_fmod(ctx, {x}, {y}, {site}, {single})", t))
+            elif op == "**":
+                st.append(_Val(f"_fpow({x}, {y}, {single})", t))
+            return
+        if op in "+-*":
+            st.append(_Val(_wrap_expr(f"{x} {op} {y}", t), t))
+        elif op == "/":
+            st.append(_Val(f"_idiv(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
+        elif op == "MOD":
+            st.append(_Val(f"_imod(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
+        elif op == "**":
+            st.append(_Val(f"_ipow(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
+
+
+def _result_src(t: DataType) -> DataType:
+    """Functions return Python numbers: floats for REAL results, ints otherwise."""
+    if isinstance(t, Elementary) and t.kind is Kind.REAL:
+        from ..semantics.types import LREAL
+
+        return LREAL
+    from ..semantics.types import LINT
+
+    return LINT
+
