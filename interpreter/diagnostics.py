@@ -74,6 +74,7 @@ _TABLE: list[tuple[str, str]] = [
     ("U301", "routine type not supported (FBD/SFC)"),
     ("U302", "protected (encoded) content not supported"),
     ("U303", "system attribute not simulated"),
+    ("U304", "instruction recognised but not executable yet"),
 ]
 
 _SEVERITY = {"S": Severity.ERROR, "E": Severity.ERROR, "W": Severity.WARNING, "U": Severity.ERROR}

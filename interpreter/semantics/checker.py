@@ -311,6 +311,7 @@ class Checker:
             return
         self.a.call_of[id(c)] = ins
         self.operands(c, ins)
+        self.require_implementation(ins, c.name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
                 diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, c.span)
@@ -346,6 +347,13 @@ class Checker:
                     self.check_assignable(m[1], vt, a.value.span)
                 fb.inputs.append((m[0], m[1], a.value))
         self.a.fb_of[id(c)] = fb
+        self.require_implementation(ins, c.name_span)
+
+    def require_implementation(self, ins: Instruction, span: n.Span) -> None:
+        from ..instructions.registry import lookup
+
+        if ins.name != "JSR" and lookup(ins.name, self.language) is None:
+            self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
     def operands(self, c: n.Call, ins: Instruction) -> None:
         for a in c.args:
@@ -614,6 +622,7 @@ class Checker:
                 self.err("E103", f"unknown function '{c.name}'{self.suggest(c.name.upper(), fnames)}", c.name_span)
             return None
         self.a.call_of[id(c)] = ins
+        self.require_implementation(ins, c.name_span)
         if len(c.args) != len(ins.operands):
             self.err("E104", f"{ins.name} takes {len(ins.operands)} argument(s), {len(c.args)} given", c.span)
             return None
