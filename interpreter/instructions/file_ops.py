@@ -125,7 +125,8 @@ def _source_type(source: object, dest: Ref) -> Elementary:
 @implements("SWPB")
 def swpb(ctx: ExecContext, rung: bool, source: object, mode: int, dest: Ref) -> None:
     stype = _source_type(source, dest)
-    value = int(source.get() if isinstance(source, Ref) else source)  # type: ignore[arg-type]
+    raw = source.get() if isinstance(source, Ref) else source
+    value = int(raw) if isinstance(raw, int | float) else 0
     if stype.bits == 16:
         u = value & 0xFFFF
         dest.set(wrap(((u & 0xFF) << 8) | (u >> 8), 16, True))  # DINT dest: sign-extended

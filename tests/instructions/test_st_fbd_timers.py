@@ -42,6 +42,14 @@ def test_tonr_reaches_preset_on_51st_execution_and_clamps() -> None:
     assert t[fb.T_EOUT] == 1 and t[fb.T_STATUS] == 0
 
 
+def test_tonr_acc_stops_at_preset_when_a_scan_overshoots() -> None:
+    t, _ = _new("FBD_TIMER", PRE=25, TimerEnable=1)
+    # 10 ms scans: 0, 10, 20, then 20 + 10 = 30 > PRE 25 -> ACC held at 25, DN on
+    rec = _run(fb.tonr, ExecContext(), t, [0.0, 10.0, 20.0, 30.0, 40.0])
+    assert [r[0] for r in rec] == [0, 10, 20, 25, 25]
+    assert rec[3] == (25, 1, 0, 1)
+
+
 def test_tonr_disable_resets_and_reset_mid_way() -> None:
     t, idx = _new("FBD_TIMER", PRE=100, TimerEnable=1)
     ctx = ExecContext()
