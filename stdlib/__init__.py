@@ -13,7 +13,7 @@ from pathlib import Path
 
 _ROOT = Path(__file__).parent
 
-OPERAND_FORMATS = frozenset({"tag", "immediate", "value", "array", "routine", "label"})
+OPERAND_FORMATS = frozenset({"tag", "immediate", "value", "array", "memory", "routine", "label"})
 OPERAND_DIRS = frozenset({"in", "out", "inout"})
 
 

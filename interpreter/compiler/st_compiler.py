@@ -214,6 +214,15 @@ class RoutineCompiler:
                 self.emit(Op.CONST, (e.ident if isinstance(e, n.Name) else "", None))
                 continue
             t = self.a.type_of.get(id(e))
+            if op.format == "memory":
+                self.place(e)
+                if isinstance(t, ArrayType):  # whole array: walk from element 0
+                    self.emit(Op.AREF, (t.elem, t.dims, False))
+                else:
+                    base_t = self.a.type_of.get(id(e.base)) if isinstance(e, n.Index) else None
+                    dims = base_t.dims if isinstance(base_t, ArrayType) else ()
+                    self.emit(Op.AREF, (t, dims, True))
+                continue
             if op.format == "array":
                 arr_t = self.a.type_of[id(e.base)] if isinstance(e, n.Index) else t
                 assert isinstance(arr_t, ArrayType)

@@ -394,7 +394,10 @@ class Checker:
             return
         t = self.expr(e)
         is_tag = isinstance(e, LVALUES) and id(e) not in self.a.enum_of
-        if op.format == "tag" and not is_tag:
+        if op.format == "memory" and isinstance(e, n.Bit | n.IndirectBit):
+            self.err("E106", f"{ins.name} operand {op.name} must be a tag or element, not a bit", e.span)
+            return
+        if op.format in ("tag", "memory") and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} must be a tag", e.span)
             return
         if op.format == "immediate" and is_tag:
