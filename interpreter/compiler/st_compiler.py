@@ -6,7 +6,7 @@ from stdlib import Instruction
 
 from ..semantics.checker import Analysis, FBCall
 from ..semantics.program import ProgramModel, const_number
-from ..semantics.types import BOOL, DINT, ArrayType, DataType, Elementary, StructType, promote
+from ..semantics.types import BOOL, DINT, LREAL, ArrayType, DataType, Elementary, StructType, promote
 from ..syntax import nodes as n
 from .bytecode import Code, Ins, Op
 
@@ -289,6 +289,9 @@ class RoutineCompiler:
 
     def value(self, e: n.Expr, want: DataType) -> None:
         """Push the value of `e` converted to `want` (elementary targets only)."""
+        if isinstance(e, n.Literal) and isinstance(e.value, float) and want is LREAL:
+            self.emit(Op.CONST, (e.value, LREAL))  # a REAL literal keeps double precision in LREAL
+            return
         t = self.expr(e)
         if isinstance(want, Elementary) and isinstance(t, Elementary):
             self.convert(t, want)

@@ -161,7 +161,7 @@ def _wrap_expr(x: str, t: Elementary) -> str:
     mask = (1 << t.bits) - 1
     if t.signed:
         half = 1 << (t.bits - 1)
-        return f"((({x}) + {half}) & {mask}) - {half}"
+        return f"(((({x}) + {half}) & {mask}) - {half})"
     return f"(({x}) & {mask})"
 
 
