@@ -6,7 +6,16 @@ from stdlib import Instruction
 
 from ..semantics.checker import Analysis, FBCall
 from ..semantics.program import ProgramModel, const_number
-from ..semantics.types import BOOL, DINT, LREAL, ArrayType, DataType, Elementary, StructType, promote
+from ..semantics.types import (
+    BOOL,
+    DINT,
+    LREAL,
+    ArrayType,
+    DataType,
+    Elementary,
+    StructType,
+    promote,
+)
 from ..syntax import nodes as n
 from .bytecode import Code, Ins, Op
 
