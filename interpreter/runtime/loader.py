@@ -25,11 +25,15 @@ class Loaded:
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
 
-def read_text(path: Path) -> str:
+def _require_file(path: Path) -> None:
     if not path.exists():
         raise InputError(f"{path}: no such file")
     if path.is_dir():
         raise InputError(f"{path}: is a directory, expected a .st file")
+
+
+def read_text(path: Path) -> str:
+    _require_file(path)
     try:
         size = path.stat().st_size
         if size > MAX_FILE_BYTES:
@@ -48,6 +52,7 @@ def read_text(path: Path) -> str:
 
 
 def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
+    _require_file(path)  # a missing file or a directory is named as such, whatever its suffix
     suffix = path.suffix.lower()
     if suffix == ".st":
         routine, diags = parse_st(read_text(path), str(path))
