@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import math
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -82,12 +83,14 @@ def parse_set_value(text: str) -> object:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    if args.scan_period <= 0:
-        raise UsageError("--scan-period must be > 0")
+    if not 0 < args.scan_period < math.inf:  # also rejects nan
+        raise UsageError("--scan-period must be a finite number > 0")
     if args.scans is not None and args.scans < 0:
         raise UsageError("--scans must be >= 0")
-    if args.duration is not None and args.duration < 0:
-        raise UsageError("--duration must be >= 0")
+    if args.duration is not None and not 0 <= args.duration < math.inf:
+        raise UsageError("--duration must be a finite number >= 0")
+    if args.watchdog <= 0:
+        raise UsageError("--watchdog must be > 0")
     loaded = load(args.programs)
     if has_errors(loaded.diagnostics):
         _print_diags(loaded.diagnostics)
