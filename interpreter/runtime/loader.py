@@ -41,6 +41,8 @@ def read_text(path: Path) -> str:
         data = path.read_bytes()
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror}") from exc
+    if not data.strip():
+        raise InputError(f"{path}: file is empty")
     if b"\x00" in data[:8192]:
         raise InputError(f"{path}: looks like a binary file, not Logix source text")
     if data.startswith(b"\xef\xbb\xbf"):
