@@ -199,3 +199,18 @@ def test_real_functions_single_precision(st) -> None:
     assert t["r"] == 1.4142135381698608
     assert t["p"] == 1.4142135381698608
     assert not math.isclose(t["r"], math.sqrt(2), rel_tol=1e-12)
+
+
+def test_dint_min_edge_cases(st) -> None:
+    src = """
+    VAR mn : DINT := -2147483648; m1 : DINT := -1; neg, q : DINT; rm : REAL; rp : REAL; END_VAR
+    neg := -mn;
+    q := mn / m1;
+    rm := -7.5 MOD 2.0;
+    rp := -2.0 ** 2;
+    """
+    t = st.tags(src, "neg", "q", "rm", "rp")
+    assert t["neg"] == -2147483648  # -(-2^31) = 2^31 wraps back to -2^31
+    assert t["q"] == -2147483648  # -2^31 / -1 = 2^31 wraps to -2^31
+    assert t["rm"] == -1.5  # -7.5 - TRUNC(-3.75) * 2.0 = -7.5 + 6.0
+    assert t["rp"] == -4.0  # -(2.0 ** 2) in REAL

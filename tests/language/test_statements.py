@@ -304,3 +304,31 @@ def test_jsr_unknown_routine_is_a_verification_error(st) -> None:
     r = st.cli("run", str(main), "--json")
     assert r.code == 1
     assert "E124" in r.err
+
+
+def test_for_step_computed_at_run_time(st) -> None:
+    src = """
+    VAR i, n, last : DINT; stp : DINT := -2; END_VAR
+    FOR i := 10 TO 1 BY stp DO n := n + 1; last := i; END_FOR;
+    """
+    t = st.tags(src, "i", "n", "last")
+    assert t == {"i": 0, "n": 5, "last": 2}  # 10, 8, 6, 4, 2; then 0 < 1 ends the loop
+
+
+def test_case_on_sint_with_negative_range(st) -> None:
+    src = """
+    VAR s : SINT := -3; c : DINT; END_VAR
+    CASE s OF -5..-3: c := 1; ELSE c := 2; END_CASE;
+    """
+    assert st.tags(src, "c")["c"] == 1  # -3 is inside -5..-3 (ends inclusive)
+
+
+def test_lint_bit_63_and_watch_indirect_bit(st) -> None:
+    src = """
+    VAR l : LINT; d : DINT := 10; i : DINT := 3; END_VAR
+    l.63 := 1;
+    """
+    t = st.tags(src, "l", "d.[i]", "d.[i - 3]")
+    assert t["l"] == -9223372036854775808  # bit 63 is the LINT sign bit: -2^63
+    assert t["d.[i]"] is True  # 10 = 2#1010: bit 3 set
+    assert t["d.[i - 3]"] is False  # bit 0 clear
