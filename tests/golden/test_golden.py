@@ -83,3 +83,11 @@ def test_golden(name: str, request: pytest.FixtureRequest) -> None:
 
 def test_at_least_three_goldens() -> None:
     assert len(CASES) >= 3
+
+
+def test_comparison_tolerance() -> None:
+    assert _same("0.30000001192092896", "0.3000000119")  # REAL within 1e-6 relative
+    assert not _same("1.0000001192092896", "1.0000021")  # 2e-6 relative: a real difference
+    assert not _same("3", "4")
+    assert _same("nan", "nan")
+    assert not _same("1", "true")
