@@ -131,6 +131,15 @@ class _Place:
     owner: Elementary | None = None  # type of the integer holding `bit`
 
 
+def _nonzero_real_const(expr: str) -> bool:
+    """A float literal emitted by CONST that is finite and not zero."""
+    try:
+        v = float(expr.strip("()"))
+    except ValueError:
+        return False
+    return v != 0.0 and math.isfinite(v)
+
+
 def _is_simple(expr: str) -> bool:
     return expr.replace("_", "").replace("-", "").isalnum() or (
         expr.startswith("T[") and expr.endswith("]") and expr[2:-1].isdigit()
@@ -412,6 +421,9 @@ class Translator:
             if op in "+-*":
                 e = f"({x} {op} {y})"
                 st.append(_Val(f"_f32{e}" if single else e, t))
+            elif op == "/" and _nonzero_real_const(y):
+                e = f"({x} / {y})"  # cannot fault: inline what _fdiv would do
+                st.append(_Val(f"_f32{e}" if single else e, t))
             elif op == "/":
                 st.append(_Val(f"_fdiv(ctx, {x}, {y}, {site}, {single})", t))
             elif op == "MOD":
@@ -423,6 +435,11 @@ class Translator:
             st.append(_Val(_wrap_expr(f"{x} {op} {y}", t), t))
         elif op == "/":
             st.append(_Val(f"_idiv(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
+        elif op == "MOD" and y.isdigit() and int(y) > 0:
+            # Constant positive divisor: no fault, |result| < divisor so no wrap; the sign
+            # follows the dividend (A - TRUNC(A/B)*B), unlike Python's %.
+            a = self.fresh()
+            st.append(_Val(f"({a} % {y} if ({a} := {x}) >= 0 else -(-{a} % {y}))", t))
         elif op == "MOD":
             st.append(_Val(f"_imod(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
         elif op == "**":
