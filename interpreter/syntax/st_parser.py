@@ -109,9 +109,6 @@ class AstBuilder(Transformer):
         dims = list(c[:-1]) + inner.dims
         return n.TypeRef(inner.name, dims, inner.span)
 
-    def type_string_len(self, c: list) -> n.TypeRef:
-        return n.TypeRef("STRING", [], tspan(c[0]))
-
     def dim_range(self, c: list) -> tuple[int, int]:
         return (c[0], c[1])
 
