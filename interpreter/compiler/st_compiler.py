@@ -315,10 +315,7 @@ class RoutineCompiler:
             self.emit(Op.CONST, (self.a.enum_of[id(e)], DINT))
             return DINT
         if isinstance(e, n.Literal):
-            if e.type == "STRING":
-                self.emit(Op.CONST, (e.value, t))
-            else:
-                self.emit(Op.CONST, (e.value, t))
+            self.emit(Op.CONST, (e.value, t))
             return t
         if isinstance(e, n.Name) and id(e) in self.a.system_of:
             self.emit(Op.SYS, self.a.system_of[id(e)])

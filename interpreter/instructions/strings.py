@@ -55,8 +55,16 @@ def _value(x: object) -> object:
     return x.get() if isinstance(x, Ref) else x
 
 
-def _span_ok(src: list, text: bytes, qty: int, start: int) -> bool:
-    return qty >= 0 and 1 <= start <= len(src[1]) and start + qty <= len(text) + 1
+def _span(ctx: ExecContext, src: list, qty: int, start: int) -> tuple[bytes, int, int] | None:
+    """Source text and a valid (Qty, Start) for MID/DELETE; None (after the fault) otherwise."""
+    text = _text(ctx, src)
+    if text is None:
+        return None
+    qty, start = int(qty), int(start)
+    if not (qty >= 0 and 1 <= start <= len(src[1]) and start + qty <= len(text) + 1):
+        _bad_range(ctx)
+        return None
+    return text, qty, start
 
 
 # ------------------------------------------------------------------ ASCII string
@@ -70,26 +78,18 @@ def concat(ctx: ExecContext, rung: bool, a: list, b: list, dest: list) -> None:
 
 @implements("MID")
 def mid(ctx: ExecContext, rung: bool, src: list, qty: int, start: int, dest: list) -> None:
-    text = _text(ctx, src)
-    if text is None:
-        return
-    qty, start = int(qty), int(start)
-    if not _span_ok(src, text, qty, start):
-        _bad_range(ctx)
-        return
-    _store(ctx, dest, text[start - 1 : start - 1 + qty])
+    span = _span(ctx, src, qty, start)
+    if span is not None:
+        text, qty, start = span
+        _store(ctx, dest, text[start - 1 : start - 1 + qty])
 
 
 @implements("DELETE")
 def delete(ctx: ExecContext, rung: bool, src: list, qty: int, start: int, dest: list) -> None:
-    text = _text(ctx, src)
-    if text is None:
-        return
-    qty, start = int(qty), int(start)
-    if not _span_ok(src, text, qty, start):
-        _bad_range(ctx)
-        return
-    _store(ctx, dest, text[: start - 1] + text[start - 1 + qty :])
+    span = _span(ctx, src, qty, start)
+    if span is not None:
+        text, qty, start = span
+        _store(ctx, dest, text[: start - 1] + text[start - 1 + qty :])
 
 
 @implements("INSERT")

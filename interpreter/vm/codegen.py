@@ -14,7 +14,7 @@ from typing import Any
 
 from ..compiler.bytecode import Code, Ins, Op
 from ..instructions.registry import lookup, lookup_prescan
-from ..semantics.types import BOOL, DataType, Elementary, Kind, StructType
+from ..semantics.types import BOOL, LINT, LREAL, DataType, Elementary, Kind, StructType
 from .context import ExecContext, MajorFault
 from .refs import ArrayRef, BitRef, Ref
 from .values import f32, real_to_int, set_string, string_text, wrap
@@ -448,11 +448,5 @@ class Translator:
 
 def _result_src(t: DataType) -> DataType:
     """Functions return Python numbers: floats for REAL results, ints otherwise."""
-    if isinstance(t, Elementary) and t.kind is Kind.REAL:
-        from ..semantics.types import LREAL
-
-        return LREAL
-    from ..semantics.types import LINT
-
-    return LINT
+    return LREAL if isinstance(t, Elementary) and t.kind is Kind.REAL else LINT
 
