@@ -91,6 +91,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--duration must be a finite number >= 0")
     if args.watchdog <= 0:
         raise UsageError("--watchdog must be > 0")
+    if args.coarse_update is not None and not 0 < args.coarse_update < math.inf:
+        raise UsageError("--coarse-update must be a finite number of milliseconds > 0")
     loaded = load(args.programs)
     if has_errors(loaded.diagnostics):
         _print_diags(loaded.diagnostics)
@@ -99,7 +101,8 @@ def cmd_run(args: argparse.Namespace) -> int:
                               "diagnostics": [d.to_json() for d in loaded.diagnostics]}))
         return EXIT_VERIFY
     _print_diags(loaded.diagnostics)  # warnings only
-    ctl = Controller(loaded, scan_period_ms=args.scan_period, watchdog=args.watchdog)
+    ctl = Controller(loaded, scan_period_ms=args.scan_period, watchdog=args.watchdog,
+                     coarse_update_ms=args.coarse_update)
     watches = _watches(ctl, args.watch)
     for item in args.set:
         name, sep, value = item.partition("=")

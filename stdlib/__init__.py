@@ -62,6 +62,7 @@ class Operand:
     enum: str | None = None
     optional: bool = False
     doc: str = ""
+    nullable: bool = False  # a literal 0 means "not used" (the implementation gets None)
 
 
 @dataclass(frozen=True, slots=True)
@@ -151,6 +152,7 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
                 enum=o.get("enum"),
                 optional=bool(o.get("optional", False)),
                 doc=o.get("doc", ""),
+                nullable=bool(o.get("nullable", False)),
             )
         )
     return Instruction(

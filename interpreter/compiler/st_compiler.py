@@ -4,12 +4,13 @@ from __future__ import annotations
 
 from stdlib import Instruction
 
-from ..semantics.checker import Analysis, FBCall
+from ..semantics.checker import Analysis, FBCall, int_literal_for_real
 from ..semantics.program import ProgramModel, const_number
 from ..semantics.types import (
     BOOL,
     DINT,
     LREAL,
+    REAL,
     ArrayType,
     DataType,
     Elementary,
@@ -222,6 +223,9 @@ class RoutineCompiler:
             if op.format == "routine":
                 self.emit(Op.CONST, (e.ident if isinstance(e, n.Name) else "", None))
                 continue
+            if op.nullable and const_number(e) == 0:
+                self.emit(Op.CONST, (None, None))  # optional array not used
+                continue
             t = self.a.type_of.get(id(e))
             if op.format == "memory":
                 self.place(e)
@@ -246,7 +250,8 @@ class RoutineCompiler:
                 self.emit(Op.REF, t)
             else:
                 assert isinstance(t, Elementary)
-                self.value(e, t)
+                # an integer literal for a REAL operand is passed as REAL (SPEC 9.15)
+                self.value(e, REAL if int_literal_for_real(e, t, op.types) else t)
         return len(c.args)
 
     def fb_call(self, c: n.Call, fb: FBCall) -> None:

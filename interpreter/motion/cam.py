@@ -72,23 +72,31 @@ def calculate_cam_profile(
     start_slope: float = 0.0,
     end_slope: float = 0.0,
 ) -> CamProfile:
-    """MCCP: segment_type[i] shapes the segment from point i to i+1 (the last entry is unused)."""
+    """MCCP: segment_type[i] shapes the segment from point i to i+1 (the last entry is unused).
+
+    Errors follow the Logix table: 26 fewer than 2 points, 29 master values not strictly
+    increasing, 28 a segment type other than 0/1, 13 a non-finite slave value.
+    """
     xm = np.asarray(master, dtype=float)
     ys = np.asarray(slave, dtype=float)
     st = np.asarray(segment_type, dtype=int)
     n = len(xm)
     if n < 2 or len(ys) != n or len(st) < n - 1:
         raise MotionParameterError(
-            MotionError.PARAMETER_OUT_OF_RANGE, _OP_LENGTH, "a cam needs at least 2 points"
+            MotionError.ILLEGAL_CAM_LENGTH, _OP_LENGTH, "a cam needs at least 2 points"
         )
-    if not np.all(np.isfinite(xm)) or not np.all(np.isfinite(ys)) or np.any(np.diff(xm) <= 0):
+    if not np.all(np.isfinite(ys)):
         raise MotionParameterError(
-            MotionError.PARAMETER_OUT_OF_RANGE, _OP_CAM, "cam master values must increase"
+            MotionError.PARAMETER_OUT_OF_RANGE, _OP_CAM, "cam slave values must be finite"
+        )
+    if not np.all(np.isfinite(xm)) or np.any(np.diff(xm) <= 0):
+        raise MotionParameterError(
+            MotionError.ILLEGAL_CAM_ORDER, _OP_CAM, "cam master values must increase"
         )
     seg = st[: n - 1]
     if np.any((seg != LINEAR) & (seg != CUBIC)):
         raise MotionParameterError(
-            MotionError.PARAMETER_OUT_OF_RANGE, _OP_CAM, "segment type must be 0 or 1"
+            MotionError.ILLEGAL_CAM_TYPE, _OP_CAM, "segment type must be 0 or 1"
         )
     h = np.diff(xm)
     delta = np.diff(ys) / h  # chord slope of each segment

@@ -36,7 +36,7 @@ from interpreter.motion.enums import (
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.generators import ProfileGen
-from interpreter.motion.profiles import Limits, plan_jog, plan_move, plan_stop
+from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCam, TimeCamSet
 
@@ -143,6 +143,7 @@ class MotionGroup:
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._next_handle = 1
         self._cam_claim: set[int] = set()  # axes with an active or queued immediate cam
+        self._claim_mode: dict[int, bool] = {}  # claimed axis -> its cam is master driven
         self._links_pending: dict[tuple[int, MotionType], MasterLink] = {}
         self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
         self._group_stops: dict[int, _GroupStop] = {}
@@ -199,6 +200,10 @@ class MotionGroup:
         for name, bit in STATUS_BITS.items():
             word |= self.status[name].astype(np.uint32) << np.uint32(bit)
         return word
+
+    def reserve_handle(self) -> int:
+        """A fresh handle for a request that starts no generator (e.g. a fault reset)."""
+        return self._handle()
 
     def _handle(self) -> int:
         h = self._next_handle
@@ -264,14 +269,52 @@ class MotionGroup:
             return bad_operand(3)
         if reference not in MasterReference.__members__.values():
             return bad_operand(4)
+        mt = MotionType(motion_type)
+        existing = [
+            lk for t in (self._links_pending, self._links_active) for lk in t.values()
+            if lk.slave == slave
+        ]  # fmt: skip
+        # All and a specific motion type cannot be assigned to one slave at the same time
+        if any((lk.motion_type == MotionType.ALL) != (mt == MotionType.ALL) for lk in existing):
+            return StartResult(error=MotionError.MDSC_ALL_CONFLICT)
+        eff = self._effective_reference(master, MasterReference(reference))
+        if self.axis_busy(slave) and any(
+            self._effective_reference(lk.master, lk.reference) != eff for lk in existing
+        ):  # the master reference of a moving slave cannot change
+            return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
         h = self._handle()
-        key = (slave, MotionType(motion_type))
+        key = (slave, mt)
         old = self._links_pending.get(key)
         link = MasterLink(h, slave, master, MotionType(motion_type), MasterReference(reference))
         self._links_pending[key] = link
         if old is not None:  # a later MDAC overrides a pending one
             self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
         return StartResult(handle=h)
+
+    def _effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
+        """A virtual master has no actual position of its own: it is always followed by command."""
+        return MasterReference.COMMAND if self.virtual[master] else reference
+
+    def axis_busy(self, axis: int) -> bool:
+        """Is any generator or time cam running on the axis (or is it still moving)?"""
+        return (
+            any(g.axis == axis for g in self._gens)
+            or bool(self._cams.on_axis(axis))
+            or abs(float(self.command_velocity[axis])) > _VEL_EPS
+        )
+
+    def links_in_use(self) -> set[int]:
+        """MDAC handles that drive a running master-driven generator or cam (MDAC .AC)."""
+        used = {g.link for g in self._gens if g.link}
+        used.update(c.link for c in self._cams.cams if c.link)
+        return used
+
+    def generator_profile(self, handle: int) -> MoveProfile | None:
+        """The planned profile of a running move/jog/stop (for event distances and plots)."""
+        for g in self._gens:
+            if g.handle == handle:
+                return g.profile
+        return None
 
     def _find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
         for table in (self._links_pending, self._links_active):
@@ -301,7 +344,7 @@ class MotionGroup:
     def _master_clock(
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
     ) -> MasterClock:
-        ref = MasterReference.COMMAND if self.virtual[link.master] else link.reference
+        ref = self._effective_reference(link.master, link.reference)
         return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
 
     def _master_state(self, clock: MasterClock) -> tuple[float, float]:
@@ -439,9 +482,10 @@ class MotionGroup:
         # Profile, AccelJerk, DecelJerk, JerkUnits, Merge, MergeSpeed, LockPos, LockDir
         if not (math.isfinite(speed) and speed >= 0.0):
             return bad_operand(first)
-        if not (math.isfinite(accel) and accel > 0.0):
+        # +inf is "unlimited" (a velocity step), as time-based planning with zero ramp time
+        if not accel > 0.0:
             return bad_operand(first + step)
-        if not (math.isfinite(decel) and decel > 0.0):
+        if not decel > 0.0:
             return bad_operand(first + 2 * step)
         p = first + 3 * step
         if profile not in (0, 1):
@@ -555,7 +599,7 @@ class MotionGroup:
         """MAS: decelerate the selected motion to rest (None: the axis's configured limits)."""
         if stop_type not in StopType.__members__.values():
             return bad_operand(2)
-        if decel is not None and not (math.isfinite(decel) and decel > 0.0):
+        if decel is not None and not decel > 0.0:
             return bad_operand(4)
         if decel_jerk is not None and not decel_jerk > 0.0:
             return bad_operand(7)
@@ -671,6 +715,9 @@ class MotionGroup:
             return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
         if not pending and axis in self._cam_claim:
             return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
+        if pending and axis in self._cam_claim and self._claim_mode.get(axis) != master_driven:
+            # a pending cam must be in the mode of the active one (MATC seed)
+            return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
         if not self.servo_on[axis]:
             return StartResult(error=MotionError.SERVO_OFF_STATE)
         if master_driven and not pending and self._find_link(axis, MotionType.TIME_CAM) is None:
@@ -699,6 +746,7 @@ class MotionGroup:
             return StartResult(handle=h)
 
         self._cam_claim.add(axis)
+        self._claim_mode[axis] = master_driven
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             if master_driven:
@@ -844,3 +892,4 @@ class MotionGroup:
         st["ServoActionStatus"] = self.servo_on.copy()
         # every queued request has been applied: the claim is exactly the running cams
         self._cam_claim = set(self._cams.active_axes().tolist())
+        self._claim_mode = {c.axis: c.clock is not None for c in self._cams.cams}

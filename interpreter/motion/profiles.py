@@ -127,11 +127,11 @@ class _Builder:
         self.v = v_to  # remove rounding drift; the phases reach v_to exactly in theory
         self.a = 0.0
 
-    def finish(self, final_p: float | None, final_v: float) -> MoveProfile:
+    def finish(self, final_p: float | None, final_v: float, forever: bool = False) -> MoveProfile:
         p = self.p if final_p is None else final_p
         self.rows.append((self.t, p, final_v, 0.0, 0.0))
         arr = np.array(self.rows, dtype=float)
-        dur = self.t if final_v == 0.0 else math.inf
+        dur = self.t if final_v == 0.0 and not forever else math.inf
         return MoveProfile(
             t0=arr[:, 0],
             p0=arr[:, 1],
@@ -230,9 +230,16 @@ def _bisect_peak(v0: float, lo: float, hi: float, distance: float, lim: Limits) 
 
 
 def plan_move(distance: float, lim: Limits, v0: float = 0.0) -> MoveProfile:
-    """Move by `distance` starting at velocity v0 (merge), ending at rest at exactly `distance`."""
+    """Move by `distance` starting at velocity v0 (merge), ending at rest at exactly `distance`.
+
+    A move with speed 0 dwells: it comes to rest and stays in process without reaching its
+    target (Logix pauses such a move rather than completing it).
+    """
     b = _Builder()
     b.v = v0
+    if lim.speed <= 0.0 and abs(distance) > _EPS:
+        b.velocity_change(0.0, lim)
+        return b.finish(None, 0.0, forever=True)
     _plan_into(b, distance, lim)
     return b.finish(distance, 0.0)
 

@@ -228,6 +228,7 @@ class TimeCamSet:
         new = self.pending.pop(old.axis)
         # the pending cam inherits the running clock: time, or the same master distance
         new.clock = old.clock
+        new.link = old.link
         new.raw = old.raw
         new.count = old.count
         new.offset = pass_end

@@ -15,6 +15,7 @@ from ..vm.codegen import HELPERS, Translator
 from ..vm.context import ExecContext, MajorFault
 from ..vm.values import string_text
 from .loader import Loaded
+from .motion import MotionRuntime
 from .storage import allocate
 
 DEFAULT_WATCHDOG = 5_000_000
@@ -52,11 +53,19 @@ class WatchError(ValueError):
 class Controller:
     """Holds tag storage and the translated routines; `scan()` runs one program scan."""
 
-    def __init__(self, loaded: Loaded, scan_period_ms: float = 1.0, watchdog: int = DEFAULT_WATCHDOG) -> None:
+    def __init__(
+        self,
+        loaded: Loaded,
+        scan_period_ms: float = 1.0,
+        watchdog: int = DEFAULT_WATCHDOG,
+        coarse_update_ms: float | None = None,
+    ) -> None:
         self.model = loaded.model
         self.analysis = loaded.analysis
         self.T = allocate(self.model)
         self.ctx = ExecContext(scan_period_ms=scan_period_ms, budget=watchdog, program=self.model)
+        # the motion planner runs before each scan (SPEC 9.3); its details live in the bridge
+        self.ctx.motion = MotionRuntime(self.model, self.T, coarse_update_ms)
         self.sites: list[tuple[str, n.Span]] = []
         self.ns: dict[str, Any] = dict(HELPERS)
         self.ns["_R"] = {}

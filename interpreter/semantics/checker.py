@@ -79,6 +79,35 @@ def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
     return False
 
 
+def is_cam_profile_array(t: DataType) -> bool:
+    return isinstance(t, ArrayType) and isinstance(t.elem, StructType) and t.elem.name == "CAM_PROFILE"
+
+
+def cam_points(init: n.ArrayInit) -> list[tuple[float, float, int]]:
+    """(Master, Slave, SegmentType) of each CAM-form element of a verified initialiser."""
+    out = []
+    for item in init.items:
+        vals = {"MASTER": 0.0, "SLAVE": 0.0, "SEGMENTTYPE": 0}
+        if isinstance(item, n.StructInit):
+            for mname, _, value in item.members:
+                v = const_number(value)
+                if v is not None:
+                    vals[mname.upper()] = v
+        out.append((float(vals["MASTER"]), float(vals["SLAVE"]), int(vals["SEGMENTTYPE"])))
+    return out
+
+
+def int_literal_for_real(e: n.Expr, t: DataType, accepted: tuple[str, ...]) -> bool:
+    """An integer literal given where only REAL/LREAL (not its own type) is accepted."""
+    return (
+        isinstance(const_number(e), int)
+        and isinstance(t, Elementary)
+        and t.is_integer
+        and not type_matches(t, accepted)
+        and any(a in ("REAL", "LREAL", "ANY_REAL") for a in accepted)
+    )
+
+
 def describe(t: DataType | None) -> str:
     return "unknown" if t is None else str(t)
 
@@ -122,6 +151,9 @@ class Checker:
                     break
 
     def check_init(self, init: n.Init, t: DataType) -> None:
+        if isinstance(init, n.ArrayInit) and is_cam_profile_array(t):
+            self.cam_profile_init(init, t)
+            return
         if isinstance(init, n.ArrayInit):
             if not isinstance(t, ArrayType):
                 if isinstance(t, StructType) and t.name == "COORDINATE_SYSTEM":
@@ -167,6 +199,32 @@ class Checker:
             return
         if const_number(init) is None:
             self.err("E118", "an initial value must be a literal", _init_span(init))
+
+    def cam_profile_init(self, init: n.ArrayInit, t: DataType) -> None:
+        """CAM_PROFILE arrays are initialised with cam points (CAM form), calculated at load."""
+        assert isinstance(t, ArrayType)
+        cam = self.model.types.get("CAM")
+        assert cam is not None
+        if len(init.items) > t.size:
+            self.err("E118", f"{len(init.items)} cam points given for a profile of {t.size}", init.span)
+            return
+        if len(init.items) < 2:
+            self.err("E118", "a cam profile needs at least 2 points", init.span)
+            return
+        before = len(self.a.diags)
+        for item in init.items:
+            self.check_init(item, cam)
+        if len(self.a.diags) > before:
+            return
+        points = cam_points(init)
+        for k in range(1, len(points)):
+            if not points[k][0] > points[k - 1][0]:
+                self.err("E118", "cam point Master values must increase", _init_span(init.items[k]))
+                return
+        for k, (_, _, seg) in enumerate(points[:-1]):
+            if seg not in (0, 1):
+                self.err("E118", "cam point SegmentType must be 0 (linear) or 1 (cubic)", _init_span(init.items[k]))
+                return
 
     # ------------------------------------------------------------ statements
     def stmts(self, body: list[n.Stmt]) -> None:
@@ -389,6 +447,8 @@ class Checker:
             return
         if isinstance(e, n.Placeholder):
             return
+        if op.nullable and const_number(e) == 0:
+            return  # a literal 0 means the optional array is not used
         if op.format == "array":
             self.array_operand(ins, op, e)
             return
@@ -408,6 +468,8 @@ class Checker:
             return
         if t is None:
             return
+        if int_literal_for_real(e, t, op.types):
+            return  # SPEC 9.15: integer literals are accepted for REAL operands
         if not type_matches(t, op.types):
             if any(x == "AXIS" for x in op.types) or is_axis(t):
                 self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)

@@ -90,15 +90,20 @@ def test_last_point_segment_type_unused():
     assert a.evaluate(x)[0] == pytest.approx(b.evaluate(x)[0])
 
 
-def test_bad_cams_report_err_13():
+def test_bad_cams_report_the_logix_cam_errors():
+    # stdlib/motion_errors.toml: 26 Illegal Cam Length, 28 Illegal Cam Type, 29 Illegal Cam Order
     with pytest.raises(MotionParameterError) as e:
         calculate_cam_profile([0, 1, 1], [0, 1, 2], [0, 0, 0])
-    assert e.value.error == MotionError.PARAMETER_OUT_OF_RANGE and e.value.exerr == 1
+    assert e.value.error == MotionError.ILLEGAL_CAM_ORDER and e.value.exerr == 1
     with pytest.raises(MotionParameterError) as e:
         calculate_cam_profile([0], [0], [0])
-    assert e.value.exerr == 2
-    with pytest.raises(MotionParameterError):
+    assert e.value.error == MotionError.ILLEGAL_CAM_LENGTH and e.value.exerr == 2
+    with pytest.raises(MotionParameterError) as e:
         calculate_cam_profile([0, 1], [0, 1], [2, 0])
+    assert e.value.error == MotionError.ILLEGAL_CAM_TYPE
+    with pytest.raises(MotionParameterError) as e:
+        calculate_cam_profile([0, 1], [0, float("nan")], [0, 0])
+    assert e.value.error == MotionError.PARAMETER_OUT_OF_RANGE
 
 
 def test_profile_bank_matches_individual_profiles():
