@@ -273,13 +273,13 @@ class Translator:
             st.append(_Place(p.container, p.key, self.checked(b, owner.bits, site), owner))  # type: ignore[union-attr]
         elif op is Op.CONST:
             value, t = arg  # type: ignore[misc]
+            if isinstance(t, Elementary) and t.kind is Kind.REAL and t.bits == 32 and isinstance(value, int | float):
+                value = f32(float(value))  # first: 1.0e39 becomes inf in a REAL
             if isinstance(value, float) and (math.isinf(value) or math.isnan(value)):
                 expr = self.const_name(value)
             elif isinstance(value, bytes | str):
                 expr = repr(value)
             else:
-                if isinstance(t, Elementary) and t.kind is Kind.REAL and t.bits == 32:
-                    value = f32(float(value))
                 expr = repr(value)
                 if isinstance(value, int) and value < 0:
                     expr = f"({expr})"
