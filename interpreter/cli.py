@@ -12,9 +12,10 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from .diagnostics import Diagnostic, Severity, has_errors
+from .plot import PlotData, Series, require_matplotlib, write_plot
 from .runtime.controller import DEFAULT_WATCHDOG, Controller, WatchError, to_json_value
 from .runtime.loader import InputError, load
-from .semantics.types import Elementary
+from .semantics.types import Elementary, StructType
 from .syntax.literals import parse_number, parse_string
 
 EXIT_OK, EXIT_VERIFY, EXIT_USAGE, EXIT_FAULT = 0, 1, 2, 3
@@ -42,6 +43,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--set", action="append", default=[], metavar="TAG=VALUE")
     run.add_argument("--watch", action="append", default=[], metavar="EXPR")
     run.add_argument("--trace", type=Path, metavar="FILE.csv")
+    run.add_argument("--plot", type=Path, metavar="FILE.png", help="draw the traced signals (needs the plot extra)")
     run.add_argument("--json", action="store_true")
     run.add_argument("--watchdog", type=int, default=DEFAULT_WATCHDOG, metavar="N")
     check = sub.add_parser("check", help="verify without running")
@@ -93,6 +95,12 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--watchdog must be > 0")
     if args.coarse_update is not None and not 0 < args.coarse_update < math.inf:
         raise UsageError("--coarse-update must be a finite number of milliseconds > 0")
+    if args.plot is not None:  # refuse before running (docs/decisions/0102-plot.md)
+        if args.plot.suffix.lower() != ".png":
+            raise UsageError(f"--plot writes a PNG image: '{args.plot}' should end in .png")
+        missing = require_matplotlib()
+        if missing is not None:
+            raise UsageError(missing)
     loaded = load(args.programs)
     if has_errors(loaded.diagnostics):
         _print_diags(loaded.diagnostics)
@@ -115,12 +123,13 @@ def cmd_run(args: argparse.Namespace) -> int:
             raise UsageError(f"--set {exc}") from None
     scans = args.scans if args.scans is not None else round((1.0 if args.duration is None else args.duration) * 1000.0 / args.scan_period)
     trace_rows: list[list[object]] = []
+    record = args.trace is not None or args.plot is not None
     ctl.prescan()
     progress = _Progress(scans, enabled=sys.stderr.isatty() and not args.json)
     ok = True
     for k in range(scans):
         ok = ctl.scan()
-        if args.trace is not None:
+        if record:
             trace_rows.append([k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches])
         if not ok:
             break
@@ -128,6 +137,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     progress.done()
     if args.trace is not None:
         _write_trace(args.trace, [w for w, _, _ in watches], trace_rows)
+    if args.plot is not None:
+        _write_plot(args.plot, ctl, args.programs, watches, trace_rows)
     faults = ctl.faults()
     tags = {w: to_json_value(g(), t) for w, g, t in watches}
     sim_time = ctl.scans * args.scan_period / 1000.0
@@ -172,6 +183,41 @@ def _write_trace(path: Path, names: list[str], rows: list[list[object]]) -> None
             w.writerows(rows)
     except OSError as exc:
         raise InputError(f"{path}: cannot write trace: {exc.strerror}") from exc
+
+
+def _write_plot(path: Path, ctl: Controller, programs: list[Path],
+                watches: list[tuple[str, Callable[[], object], object]], rows: list[list[object]]) -> None:
+    series = []
+    for j, (name, _, t) in enumerate(watches, start=1):
+        if not isinstance(t, Elementary):
+            continue  # structures and strings are not drawn
+        kind = "bool" if t.is_bool else "int" if t.is_integer else "real"
+        series.append(Series(name, [float(r[j]) for r in rows], kind))  # type: ignore[arg-type]
+    data = PlotData(", ".join(p.name for p in programs), [float(r[0]) for r in rows], series,  # type: ignore[arg-type]
+                    _coordinate_paths(ctl, [w for w, _, _ in watches]))
+    try:
+        write_plot(path, data)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write plot: {exc.strerror or exc}") from exc
+
+
+def _coordinate_paths(ctl: Controller, watched: list[str]) -> list[tuple[str, list[str]]]:
+    """Coordinate systems whose axis positions are all watched (actual preferred to command)."""
+    norm = {w.replace(" ", "").upper(): w for w in watched}
+    out = []
+    for tag in ctl.model.tags.values():
+        st = tag.type
+        if not isinstance(st, StructType) or st.name != "COORDINATE_SYSTEM":
+            continue
+        value = ctl.T[tag.slot]
+        assert isinstance(value, list)
+        axes = [a for a in value[st.index["AXES"]] if isinstance(a, str)]
+        for member in ("ACTUALPOSITION", "COMMANDPOSITION"):
+            exprs = [norm.get(f"{a.upper()}.{member}") for a in axes]
+            if len(axes) >= 2 and all(exprs):
+                out.append((tag.name, [e for e in exprs if e]))
+                break
+    return out
 
 
 def _print_table(tags: dict[str, object]) -> None:
