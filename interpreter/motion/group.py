@@ -64,6 +64,7 @@ STATUS_BITS: dict[str, int] = {
     "MaximumSpeedExceeded": 27,
 }
 
+_STATUS_SHIFTS = np.array(list(STATUS_BITS.values()), dtype=np.uint32)
 _VEL_EPS = 1e-9
 
 
@@ -196,10 +197,8 @@ class MotionGroup:
 
     def motion_status_word(self) -> np.ndarray:
         """MotionStatus DINT bits per axis from the status arrays."""
-        word = np.zeros(len(self.axes), dtype=np.uint32)
-        for name, bit in STATUS_BITS.items():
-            word |= self.status[name].astype(np.uint32) << np.uint32(bit)
-        return word
+        bits = np.array([self.status[name] for name in STATUS_BITS], dtype=np.uint32)
+        return (bits << _STATUS_SHIFTS[:, None]).sum(axis=0, dtype=np.uint32)
 
     def reserve_handle(self) -> int:
         """A fresh handle for a request that starts no generator (e.g. a fault reset)."""

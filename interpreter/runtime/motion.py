@@ -12,10 +12,11 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cache
 
 import numpy as np
 
-from ..motion import AxisKind, CamProfile, EventKind, MotionEvent, MotionGroup
+from ..motion import STATUS_BITS, AxisKind, CamProfile, EventKind, MotionEvent, MotionGroup
 from ..semantics.program import ProgramModel
 from ..semantics.types import ArrayType, StructType, is_axis
 from ..syntax import nodes as n
@@ -324,49 +325,52 @@ class MotionRuntime:
 
     # ------------------------------------------------------------ axis attributes
     def _write_axes(self, g: Group) -> None:
-        """Axis attributes into the axis tags (REAL members rounded to float32)."""
+        """Axis attributes into the axis tags (REAL members rounded to float32).
+
+        The values of all axes are computed as arrays, in member order; each axis then takes
+        two slice stores (the REAL block and the status block), the only per-axis cost.
+        """
         if not g.axes:
             return
         core = g.core
-        cup = core.cup
         av = core.actual_velocity
-        acc = (av - g.prev_vel) / cup if core.updates > 1 else np.zeros_like(av)
+        acc = (av - g.prev_vel) / core.cup if core.updates > 1 else np.zeros_like(av)
         g.prev_vel = av.copy()
-        avg = self._average_velocity(g)
         reals = np.vstack((
             core.actual_position, core.command_position, av, core.command_velocity, acc,
-            core.command_acceleration, avg, core.command_position - core.actual_position,
+            core.command_acceleration, self._average_velocity(g),
+            core.command_position - core.actual_position,
         )).astype(np.float32).T.tolist()  # fmt: skip
         st = core.status
-        drive = core.servo_on & ~core.virtual
-        names = [name for name in st if name != "ServoActionStatus"]
-        bools = np.vstack([st[name] for name in names]).astype(np.int64).T.tolist()
-        words = core.motion_status_word().astype(np.int64).tolist()
-        servo = core.servo_on.astype(np.int64).tolist()
-        drv = drive.astype(np.int64).tolist()
+        n = len(g.axes)
+        servo = core.servo_on.astype(np.int64)
+        drive = servo & ~core.virtual
+        sources = {
+            "MOTIONSTATUS": core.motion_status_word().astype(np.int64),
+            "AXISSTATUS": servo | (drive << 1),
+            "SERVOACTIONSTATUS": servo,
+            "DRIVEENABLESTATUS": drive,
+        }
+        zero = np.zeros(n, dtype=np.int64)
+        rows_by_plan: dict[int, list[list[int]]] = {}
         for ax in g.axes:
-            i, v, ix = ax.index, ax.value, ax.layout.index
-            row = reals[i]
-            for k, name in enumerate(_REALS):
-                v[ix[name.upper()]] = row[k]
-            brow = bools[i]
-            for k, name in enumerate(names):
-                j = ix.get(name.upper())
-                if j is not None:
-                    v[j] = brow[k]
-            v[ix["MOTIONSTATUS"]] = words[i]
-            v[ix["SERVOACTIONSTATUS"]] = servo[i]
-            v[ix["DRIVEENABLESTATUS"]] = drv[i]
-            v[ix["AXISSTATUS"]] = servo[i] | (drv[i] << 1)
+            plan = _write_plan(ax.layout)
+            rows = rows_by_plan.get(id(plan))
+            if rows is None:  # status members the core does not simulate stay 0
+                cols = [sources.get(m, st.get(_STATUS_KEY.get(m, ""), zero)) for m in plan.int_names]
+                rows = rows_by_plan[id(plan)] = np.vstack(cols).astype(np.int64).T.tolist()
+            v, i = ax.value, ax.index
+            v[plan.reals] = reals[i]
+            v[plan.ints] = rows[i]
+
 
     def _average_velocity(self, g: Group) -> np.ndarray:
         """Actual travel over each axis's AverageVelocityTimebase, per second."""
         cup = g.core.cup
         pos = g.core.actual_position
-        windows = np.array([
-            min(_AVG_MAX_UPDATES, max(1, round(tb / cup))) if tb > 0 else 1
-            for tb in (ax.layout.get(ax.value, "AverageVelocityTimebase") for ax in g.axes)
-        ])  # fmt: skip
+        tb_at = g.axes[0].layout.index["AVERAGEVELOCITYTIMEBASE"]
+        tb = np.array([ax.value[tb_at] for ax in g.axes], dtype=float)
+        windows = np.where(tb > 0, np.clip(np.rint(tb / cup), 1, _AVG_MAX_UPDATES), 1).astype(np.intp)
         size = int(windows.max()) + 1
         if g.history.shape[0] < size:  # grow the ring (rare: a longer timebase was set)
             g.history = np.vstack((g.history, np.repeat(g.history[-1:], size - len(g.history), 0)))
@@ -378,6 +382,31 @@ class MotionRuntime:
         k = np.minimum(windows, g.filled)
         past = ring[(g.ring_at - k) % len(ring), np.arange(len(pos))]
         return np.where(k > 0, (pos - past) / (np.maximum(k, 1) * cup), 0.0)
+
+
+_STATUS_KEY = {name.upper(): name for name in (*STATUS_BITS, "ServoActionStatus")}
+
+
+@dataclass(frozen=True, slots=True)
+class _WritePlan:
+    """Where _write_axes stores: a slice of REAL members (in _REALS order) and a slice of
+    status members (the AxisStatus word through MaximumSpeedExceeded)."""
+
+    reals: slice
+    ints: slice
+    int_names: tuple[str, ...]  # upper-case member name of each position in `ints`
+
+
+@cache
+def _write_plan(layout: AxisLayout) -> _WritePlan:
+    ix = layout.index
+    names = {i: name for name, i in ix.items()}
+    r0 = ix[_REALS[0].upper()]
+    # the catalog declares these members consecutively; the slices rely on it
+    assert [ix[n.upper()] for n in _REALS] == list(range(r0, r0 + len(_REALS))), "AXIS REAL member order"
+    s0, s1 = ix["AXISSTATUS"], ix["MAXIMUMSPEEDEXCEEDED"] + 1
+    assert s0 < ix["MOTIONSTATUS"] < s1
+    return _WritePlan(slice(r0, r0 + len(_REALS)), slice(s0, s1), tuple(names[i] for i in range(s0, s1)))
 
 
 def _limit(x: float) -> float:

@@ -82,7 +82,7 @@ def set_error(ctl: list, err: int, exerr: int = 0) -> None:
 
 
 # ------------------------------------------------------------------ axes
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # one cached instance per type: identity hash
 class AxisLayout:
     """Member positions of an AXIS_* structure (all AXIS types share one member list)."""
 
