@@ -85,10 +85,13 @@ def real(x: object) -> float:
     return float(x)  # type: ignore[arg-type]
 
 
-def whole(x: object) -> int | None:
-    """An enumeration-like operand as an int (None when it is not a whole number)."""
+NOT_WHOLE = -1  # never a valid enumeration value: the range checks reject it
+
+
+def whole(x: object) -> int:
+    """An enumeration-like operand as an int (NOT_WHOLE when it is not a whole number)."""
     if isinstance(x, float):
-        return int(x) if x.is_integer() else None
+        return int(x) if x.is_integer() else NOT_WHOLE
     return int(x)  # type: ignore[call-overload]
 
 
@@ -145,7 +148,6 @@ def dynamics(
     ):  # fmt: skip
         if value not in ok:
             return StartResult(error=MotionError.PARAMETER_OUT_OF_RANGE, exerr=index)
-    assert su is not None and au is not None and du is not None and ju is not None
     md = su in _MASTER_UNITS
     used = [au, du] + ([ju] if s_curve else [])
     if any((u in _MASTER_UNITS) != md for u in used):
@@ -175,10 +177,10 @@ def dynamics(
             (accel_jerk, accel, "MaximumAccelJerk", first + 7),
             (decel_jerk, decel, "MaximumDecelJerk", first + 8),
         ):
-            value = jerk_value(j, ju, rate, speed, get(v, maximum))
-            if value is None:
+            jerk = jerk_value(j, ju, rate, speed, get(v, maximum))
+            if jerk is None:
                 return StartResult(error=MotionError.PARAMETER_OUT_OF_RANGE, exerr=index)
-            jerks.append(value)
+            jerks.append(jerk)
         ja, jd = jerks
     return Dynamics(speed, accel, decel, ja, jd, md)
 
@@ -193,7 +195,7 @@ def jerk_value(j: float, units: int, rate: float, speed: float, maximum: float) 
         if not 0.0 < j <= 100.0:
             return None
         return math.inf if speed <= 0.0 else rate * rate / speed * (200.0 / j - 1.0)
-    value = j * maximum / 100.0 if units == PERCENT_OF_MAX else j
+    value: float = j * maximum / 100.0 if units == PERCENT_OF_MAX else j
     return value if math.isfinite(value) and value > 0.0 else None
 
 

@@ -49,8 +49,7 @@ def _axis(rt: MotionRuntime, ctl: list, axis: list) -> Axis | None:
 
 def _merge(merge: object) -> MergeMode | None:
     """MAM/MAJ Merge: Disabled 0 / Enabled 1 (Enabled takes over all motion of the axis)."""
-    m = whole(merge)
-    return {0: MergeMode.DISABLED, 1: MergeMode.ALL}.get(m) if m is not None else None
+    return {0: MergeMode.DISABLED, 1: MergeMode.ALL}.get(whole(merge))
 
 
 # ------------------------------------------------------------------ MAM
@@ -222,7 +221,6 @@ def mas(
             return
     jerk: float | None = None  # the configured maximum decel jerk
     if cj == 1:
-        assert ju is not None
         speed = abs(float(core.command_velocity[i]))
         jerk = jerk_value(real(decel_jerk), ju, decel, speed, get(v, "MaximumDecelJerk"))
         if jerk is None:

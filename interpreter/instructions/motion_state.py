@@ -22,7 +22,12 @@ def _complete(rt: MotionRuntime, ax: Axis, ctl: list, handle: int) -> None:
         return
     g = ax.group
     rt.own(ctl, g, handle)
-    rt.after_update(g, lambda: rt.owns(ctl, g, handle) and set_bits(ctl, DN=1))
+
+    def done() -> None:  # unless a later execution took the control over
+        if rt.owns(ctl, g, handle):
+            set_bits(ctl, DN=1)
+
+    rt.after_update(g, done)
 
 
 def _axis(rt: MotionRuntime, ctl: list, axis: list) -> Axis | None:

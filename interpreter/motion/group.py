@@ -258,8 +258,8 @@ class MotionGroup:
         self,
         slave: int,
         master: int,
-        motion_type: MotionType = MotionType.ALL,
-        reference: MasterReference = MasterReference.COMMAND,
+        motion_type: int = MotionType.ALL,
+        reference: int = MasterReference.COMMAND,
     ) -> StartResult:
         """MDAC: a pending master for the slave's next master-driven motion of that type."""
         if slave == master:
@@ -356,18 +356,18 @@ class MotionGroup:
     def start_move(
         self,
         axis: int,
-        move_type: MoveType,
+        move_type: int,
         position: float,
         speed: float,
         accel: float,
         decel: float,
-        profile: ProfileShape = ProfileShape.TRAPEZOIDAL,
+        profile: int = ProfileShape.TRAPEZOIDAL,
         accel_jerk: float = math.inf,
         decel_jerk: float = math.inf,
-        merge: MergeMode = MergeMode.DISABLED,
-        merge_speed: MergeSpeed = MergeSpeed.PROGRAMMED,
+        merge: int = MergeMode.DISABLED,
+        merge_speed: int = MergeSpeed.PROGRAMMED,
         lock_position: float = 0.0,
-        lock_direction: LockDirection = LockDirection.NONE,
+        lock_direction: int = LockDirection.NONE,
         master_driven: bool = False,
     ) -> StartResult:
         """MAM: absolute or incremental move; EXERR indices follow the MAM faceplate."""
@@ -390,11 +390,11 @@ class MotionGroup:
             v0, clock, link = self._merge_out(
                 axis,
                 replaced,
-                merge,
+                MergeMode(merge),
                 ev,
                 MotionType.MOVE,
                 master_driven,
-                lock_direction,
+                LockDirection(lock_direction),
                 lock_position,
             )
             if move_type == MoveType.ABSOLUTE:
@@ -417,13 +417,13 @@ class MotionGroup:
         speed: float,
         accel: float,
         decel: float,
-        profile: ProfileShape = ProfileShape.TRAPEZOIDAL,
+        profile: int = ProfileShape.TRAPEZOIDAL,
         accel_jerk: float = math.inf,
         decel_jerk: float = math.inf,
-        merge: MergeMode = MergeMode.DISABLED,
-        merge_speed: MergeSpeed = MergeSpeed.PROGRAMMED,
+        merge: int = MergeMode.DISABLED,
+        merge_speed: int = MergeSpeed.PROGRAMMED,
         lock_position: float = 0.0,
-        lock_direction: LockDirection = LockDirection.NONE,
+        lock_direction: int = LockDirection.NONE,
         master_driven: bool = False,
     ) -> StartResult:
         """MAJ: direction 0 forward, 1 reverse; runs until stopped or replaced."""
@@ -444,11 +444,11 @@ class MotionGroup:
             v0, clock, link = self._merge_out(
                 axis,
                 replaced,
-                merge,
+                MergeMode(merge),
                 ev,
                 MotionType.JOG,
                 master_driven,
-                lock_direction,
+                LockDirection(lock_direction),
                 lock_position,
             )
             target = sign * speed
@@ -591,7 +591,7 @@ class MotionGroup:
     def stop(
         self,
         axis: int,
-        stop_type: StopType = StopType.ALL,
+        stop_type: int = StopType.ALL,
         decel: float | None = None,
         decel_jerk: float | None = None,
     ) -> StartResult:
@@ -675,14 +675,14 @@ class MotionGroup:
         self,
         axis: int,
         profile: CamProfile | None,
-        direction: CamDirection = CamDirection.SAME,
+        direction: int = CamDirection.SAME,
         distance_scaling: float = 1.0,
         time_scaling: float = 1.0,
-        execution_mode: ExecutionMode = ExecutionMode.ONCE,
-        execution_schedule: ExecutionSchedule = ExecutionSchedule.IMMEDIATE,
+        execution_mode: int = ExecutionMode.ONCE,
+        execution_schedule: int = ExecutionSchedule.IMMEDIATE,
         lock_position: float = 0.0,
-        lock_direction: LockDirection = LockDirection.NONE,
-        instruction_mode: InstructionMode = InstructionMode.TIME_DRIVEN,
+        lock_direction: int = LockDirection.NONE,
+        instruction_mode: int = InstructionMode.TIME_DRIVEN,
     ) -> StartResult:
         """MATC; profile None means not calculated (ERR 32)."""
         if direction not in (0, 1, 2, 3):
@@ -751,7 +751,7 @@ class MotionGroup:
             if master_driven:
                 link = self._take_link(axis, MotionType.TIME_CAM, ev)
                 assert link is not None
-                cam.clock = self._master_clock(link, lock_direction, lock_position)
+                cam.clock = self._master_clock(link, LockDirection(lock_direction), lock_position)
                 cam.link = link.handle
                 pos, _ = self._master_state(cam.clock)
                 cam.raw = cam.clock.advance(pos)

@@ -128,12 +128,12 @@ class MotionRuntime:
         for t in model.tags.values():
             if not is_axis(t.type):
                 continue
-            g = by_name.get(str(explicit.get(t.name.upper(), "")).upper()) or default
-            if g is None:  # SPEC 2.1: axes without a declared group join one implicit group
-                g = default = self._new_group("", None, self._cup(None, model, cli_cup))
+            home = by_name.get(str(explicit.get(t.name.upper(), "")).upper()) or default
+            if home is None:  # SPEC 2.1: axes without a declared group join one implicit group
+                home = default = self._new_group("", None, self._cup(None, model, cli_cup))
             value = T[t.slot]
             assert isinstance(value, list) and isinstance(t.type, StructType)
-            self._add_axis(g, t.name, t.type.name, value)
+            self._add_axis(home, t.name, t.type.name, value)
 
     def _new_group(self, name: str, value: list | None, cup_ms: float) -> Group:
         g = Group(name, value, cup_ms, MotionGroup(cup_ms / 1000.0))
