@@ -59,6 +59,7 @@ STATUS_BITS: dict[str, int] = {
     "TimeCamLockStatus": 14,
     "MasterOffsetMoveStatus": 15,
     "CoordinatedMotionStatus": 16,
+    "MoveLockStatus": 22,
     "JogLockStatus": 24,
     "MasterOffsetMoveLockStatus": 26,
     "MaximumSpeedExceeded": 27,
@@ -883,6 +884,15 @@ class MotionGroup:
         tl = np.zeros(n, dtype=bool)
         tl[self._cams.locked_axes()] = True
         st["TimeCamLockStatus"] = tl
+        # master-driven moves and jogs with a lock direction: following their master
+        for name, kind in (("MoveLockStatus", GeneratorKind.MOVE), ("JogLockStatus", GeneratorKind.JOG)):
+            arr = np.zeros(n, dtype=bool)
+            arr[[
+                g.axis for g in self._gens
+                if g.kind == kind and g.clock is not None
+                and g.clock.lock_direction != LockDirection.NONE and g.clock.locked
+            ]] = True  # fmt: skip
+            st[name] = arr
         cm = np.zeros(n, dtype=bool)
         cm[[lk.slave for lk in self._links_active.values()]] = True
         cm[[lk.slave for lk in self._links_pending.values()]] = True

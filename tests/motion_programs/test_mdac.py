@@ -228,3 +228,16 @@ IF k = 600 THEN {mv.format("c5", 12.0)} END_IF;"""
     got = [(tr.at(t, "M.CommandPosition"), tr.at(t, "S.CommandPosition"), tr.at(t, "S.TimeCamLockStatus")) for t in (0.25, 0.5, 0.85)]
     assert got == [pytest.approx((10.0, 20.0, 1)), pytest.approx((4.0, 20.0, 0)), pytest.approx((12.0, 24.0, 1))]
     assert max(tr.col("S.CommandPosition")[:600]) == pytest.approx(20.0)  # never followed back
+
+
+def test_master_driven_jog_with_a_position_lock(mp) -> None:
+    # MAJ at 0.5 unit per master unit (accel 1000 per mu^2: at speed after 0.0005 mu), Position
+    # Forward lock at 5: nothing until m = 5 (t = 0.507), then s = 0.5 (m - 5) - 0.000125;
+    # JogLockStatus set once following
+    jog = ("MAJ(S, c2, forward, 0.5, unitspermasterunit, 1000.0, unitspermasterunit2, 1000.0, unitspermasterunit2,"
+           " trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 5.0, positionforward);")
+    body = f"IF k = 0 THEN {JOG_M} MDAC(S, M, c1, jog, command); {jog} END_IF;"
+    tr = mp.trace(prog("", body), ["S.CommandPosition", "S.JogLockStatus", "S.JogStatus", "c2.IP"], scans=900)
+    tr.check("S.CommandPosition", lambda t: max(0.0, 0.5 * (m(t) - 5.0) - 0.000125), 5.0 * CUP + F32)
+    assert [tr.at(0.4, n) for n in ("S.JogStatus", "S.JogLockStatus", "c2.IP")] == [1, 0, 1]
+    assert tr.at(0.6, "S.JogLockStatus") == 1
