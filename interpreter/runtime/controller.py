@@ -14,7 +14,7 @@ from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
 from ..vm.context import ExecContext, MajorFault
 from ..vm.values import string_text
-from .loader import Loaded
+from .loader import InputError, Loaded
 from .storage import allocate
 
 DEFAULT_WATCHDOG = 5_000_000
@@ -64,7 +64,8 @@ class Controller:
         self.prescans: list[Callable[..., None]] = []
         for i, r in enumerate(self.model.routines):
             if r.language != "st":
-                continue
+                # Ladder is verified but not compiled yet (the ladder compiler is issue 3).
+                raise InputError(f"{r.path}: ladder routines are checked but cannot run in this version")
             code = compile_routine(self.model, self.analysis, r, self.sites)
             self.routines[r.name.upper()] = self._translate(code, code.ops, f"_routine{i}")
             self.prescans.append(self._translate(code, code.prescan, f"_prescan{i}"))
