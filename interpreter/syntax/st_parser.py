@@ -18,6 +18,7 @@ from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .comments import line_starts, strip_comments
 from .literals import parse_number, parse_string
+from .st_lexer import SlowPath, StLexer, fast_parse
 
 MAX_ERRORS = 25
 
@@ -36,7 +37,15 @@ def _span(x: object) -> n.Span:
 
 
 def _join(first: object, last: object) -> n.Span:
-    return _span(first).to(_span(last))
+    # Hot path of AST building: no intermediate Span for the two ends.
+    if isinstance(first, Token):
+        line, col = first.line, first.column
+    else:
+        line, col = first.span[:2]  # type: ignore[attr-defined]
+    if isinstance(last, Token):
+        return n.Span(line, col, last.end_line, last.end_column)  # type: ignore[arg-type]
+    end = last.span  # type: ignore[attr-defined]
+    return n.Span(line, col, end[2], end[3])  # type: ignore[arg-type]
 
 
 def _body(children: list) -> list:
@@ -257,7 +266,7 @@ class AstBuilder(Transformer):
 def _parser() -> Lark:
     grammar = (Path(__file__).parent / "st.lark").read_text()
     return Lark(
-        grammar, parser="lalr", lexer="contextual", transformer=AstBuilder(),
+        grammar, parser="lalr", lexer=StLexer, transformer=AstBuilder(),
         maybe_placeholders=True, start=["start", "expr"],
     )
 
@@ -385,7 +394,12 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
     pending_closers: dict[str, int] = {}
     seen: set[tuple[str, int, int]] = set()
     result = None
-    for _ in range(MAX_ERRORS + 1):
+    try:
+        result = fast_parse(_parser(), work, "start")
+        attempts = 0  # well-formed text: no recovery passes needed
+    except SlowPath:
+        attempts = MAX_ERRORS + 1
+    for _ in range(attempts):
         rec = _Recovery(path, pending_closers)
         try:
             result = _parser().parse(work, start="start", on_error=rec.on_error)
@@ -440,7 +454,8 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
                 pending_closers[closer] = pending_closers.get(closer, 0) + opened
         work = _blank(work, start, end)
     else:
-        result = None
+        if attempts:
+            result = None
     routine = n.Routine(name or Path(path).stem, "st", path, comments=stripped.comments)
     if result is not None:
         prog_name, (types, decls), body, span = result
