@@ -36,7 +36,7 @@ def test_subscript_fault_in_multi_dimensional_store(st) -> None:
     f = r.json["faults"][-1]
     # j = 3 is outside 0..2 of the second dimension; located at 'm[1, j]' (line 3, col 1)
     assert (f["type"], f["code"], f["major"], f["line"], f["column"]) == (4, 20, True, 3, 1)
-    assert r.json["tags"]["m"] == [0] * 6
+    assert r.json["tags"]["m"] == [[0, 0, 0], [0, 0, 0]]
 
 
 def test_each_dimension_checked_separately(st) -> None:
@@ -48,7 +48,7 @@ def test_each_dimension_checked_separately(st) -> None:
     # m[1,-1] flattens to 1*3 - 1 = 2, inside the storage; it must still fault (j < 0)
     assert r.code == 3
     assert r.json["faults"][-1]["code"] == 20
-    assert r.json["tags"]["m"] == [0] * 6
+    assert r.json["tags"]["m"] == [[0, 0, 0], [0, 0, 0]]
 
 
 def test_endless_loop_watchdog(st) -> None:
