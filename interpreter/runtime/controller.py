@@ -98,7 +98,7 @@ class Controller:
             self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
             return False
         except RecursionError:
-            self.major_fault = self._fault(4, 83, "JSR nesting too deep", ctx.site)
+            self.major_fault = self._fault(4, 84, True, "stack overflow: JSR calls nested too deep", ctx.site)
             return False
         finally:
             self.scans += 1

@@ -79,7 +79,7 @@ class StLexer(Lexer):
 
     def lex(self, lexer_state: LexerState, parser_state: Any) -> Iterator[Token]:
         src = lexer_state.text
-        text: str = getattr(src, "text", src)
+        text: str = src if isinstance(src, str) else src.text
         if parser_state is None:
             return self.tokens(text, getattr(src, "start", 0), getattr(src, "end", len(text)), None)
         states = parser_state.parse_conf.parse_table.states
@@ -144,7 +144,7 @@ class StLexer(Lexer):
             elif kind == "O":
                 ttype = ops[value]
             else:
-                ttype = kind  # type: ignore[assignment]
+                ttype = str(kind)
             col = start - line_start + 1
             tok = Token(ttype, value, start, line, col, line, col + (stop - start), stop)
             last = tok

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import time
 
@@ -127,3 +128,14 @@ def test_minor_fault_in_text_output(st) -> None:
     assert r.code == 0
     assert "minor fault type 4 code 4" in r.err
     assert "a" in r.out and "1" in r.out  # the table: a = Source A = 1
+
+
+def test_endless_jsr_recursion_is_a_stack_overflow_fault(st) -> None:
+    # main calls itself through sub: Logix faults with type 4 code 84 (stack overflow).
+    main = st.write("main.st", "VAR depth : DINT; END_VAR depth := depth + 1; JSR(sub);")
+    sub = st.write("sub.st", "JSR(main);")
+    r = st.cli("run", str(main), str(sub), "--scans", "1", "--json", "--watch", "depth")
+    assert r.code == 3, r.err
+    fault = json.loads(r.out)["faults"][-1]
+    assert (fault["type"], fault["code"], fault["major"]) == (4, 84, True)
+    assert fault["file"].endswith(("main.st", "sub.st"))
