@@ -272,8 +272,8 @@ class RoutineCompiler:
         if isinstance(e, n.Name):
             tag = self.a.tag_of[id(e)]
             self.emit(Op.TAG, tag.slot)
-            for i in tag.access:  # AOI frame members, alias paths
-                self.emit(Op.MEMBER, i)
+            for pos in tag.access:  # AOI frame members, alias paths
+                self.emit(Op.MEMBER, pos)
         elif isinstance(e, n.Member):
             self.place(e.base)
             bt = self.type_of(e.base)

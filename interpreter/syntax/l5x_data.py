@@ -178,7 +178,9 @@ class DataReader:
             layout = _PACKED.get(dtype)
             if layout is not None and len(v) == 3 and all(isinstance(x, int) for x in v):
                 word_bits, names = layout
-                members = [(name, span, n.Literal(v[i + 1], "DINT", str(v[i + 1]), span)) for i, name in enumerate(names)]
+                members: list[tuple[str, n.Span, n.Init]] = [
+                    (name, span, n.Literal(v[i + 1], "DINT", str(v[i + 1]), span)) for i, name in enumerate(names)
+                ]
                 for bname, bit in word_bits:
                     bitval = (int(v[0]) >> bit) & 1
                     members.append((bname, span, n.Literal(bitval, "DINT", str(bitval), span)))
