@@ -16,7 +16,7 @@ from ..vm.codegen import HELPERS, Translator
 from ..vm.context import ExecContext, MajorFault
 from ..vm.values import string_text
 from .aoi import AoiRoutines, make_impls
-from .loader import Loaded
+from .loader import InputError, Loaded
 from .storage import allocate
 from .tasks import Schedule
 
@@ -94,7 +94,8 @@ class Controller:
         compiled: dict[str, Callable[..., None]] = {}
         for i, r in enumerate(routines):
             if r.language != "st":
-                continue
+                # Ladder is verified but not compiled yet (the ladder compiler is issue 3).
+                raise InputError(f"{r.path}: ladder routines are checked but cannot run in this version")
             code = compile_routine(self.model, self.analysis, r, self.sites)
             compiled[r.name.upper()] = self._translate(code, code.ops, f"_routine{tag}_{i}", ns)
             self.prescans.append(self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns))
@@ -113,8 +114,10 @@ class Controller:
             done.append((aoi, routines))
         for k, (aoi, routines) in enumerate(done):
             for name, r in aoi.routines.items():
-                if r.language != "st" or name not in ("LOGIC", "ENABLEINFALSE"):
+                if name not in ("LOGIC", "ENABLEINFALSE"):
                     continue
+                if r.language != "st":
+                    raise InputError(f"{r.path}: ladder routines are checked but cannot run in this version")
                 code = compile_routine(self.model, self.analysis, r, self.sites)
                 fn = self._translate(code, code.ops, f"_aoi{k}_{name.lower()}", self.ns)
                 if name == "LOGIC":

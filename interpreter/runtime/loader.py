@@ -15,9 +15,11 @@ from ..semantics.project import build_project, controller_scope
 from ..semantics.types import TypeTable
 from ..syntax import nodes as n
 from ..syntax.l5x import L5XProject, read_l5x
+from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
+SUFFIXES = (".st", ".rll")  # program files `run` and `check` read
 
 
 class InputError(Exception):
@@ -35,7 +37,7 @@ def _require_file(path: Path) -> None:
     if not path.exists():
         raise InputError(f"{path}: no such file")
     if path.is_dir():
-        raise InputError(f"{path}: is a directory, expected a .st file")
+        raise InputError(f"{path}: is a directory, expected a .st or .rll file")
 
 
 def read_bytes(path: Path) -> bytes:
@@ -75,7 +77,10 @@ def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
     if suffix == ".st":
         routine, diags = parse_st(read_text(path), str(path))
         return [routine], diags
-    raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected .st, .rll or .L5X)")
+    if suffix == ".rll":
+        routine, diags = parse_rll(read_text(path), str(path))
+        return [routine], diags
+    raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})")
 
 
 def read_project(path: Path) -> tuple[L5XProject | None, list[Diagnostic]]:
