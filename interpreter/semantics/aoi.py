@@ -90,6 +90,21 @@ def define_aoi(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags
             if value is not None:
                 st.defaults[key] = value
             aoi.tags[key] = Tag(lname, t, sp, path, d.init, slot=0, access=(idx,), init_path=path)
+    for a in decl.aliases:  # an alias parameter names a local tag (or one of its members)
+        target = aoi.tags.get(a.target.split(".")[0].upper())
+        at: DataType | None = target.type if target is not None else None
+        path_: list[int] = list(target.access) if target is not None else []
+        for part in a.target.split(".")[1:]:
+            m = at.member(part) if isinstance(at, StructType) else None
+            if m is None:
+                at = None
+                break
+            path_.append(m[0])
+            at = m[1]
+        if target is None or at is None or a.name.upper() in aoi.tags:
+            diags.append(diag("U305", f"alias parameter '{a.name}' for '{a.target}' cannot be simulated", path, a.span))
+            continue
+        aoi.tags[a.name.upper()] = Tag(a.name, at, a.span, path, slot=target.slot, access=tuple(path_), alias_of=target)
     for r in decl.routines:
         aoi.routines[r.name.upper()] = r
     if "LOGIC" not in aoi.routines and decl.routines:

@@ -21,6 +21,13 @@ ROOT = "RSLogix5000Content"
 
 
 @dataclass(slots=True)
+class AliasDecl:
+    name: str
+    target: str
+    span: n.Span
+
+
+@dataclass(slots=True)
 class AoiParam:
     name: str
     usage: str  # "Input" | "Output" | "InOut"
@@ -35,13 +42,7 @@ class AoiDecl:
     params: list[AoiParam] = field(default_factory=list)
     locals: list[n.VarDecl] = field(default_factory=list)
     routines: list[n.Routine] = field(default_factory=list)
-
-
-@dataclass(slots=True)
-class AliasDecl:
-    name: str
-    target: str
-    span: n.Span
+    aliases: list[AliasDecl] = field(default_factory=list)  # parameters aliasing local tags
 
 
 @dataclass(slots=True)
@@ -294,6 +295,9 @@ class _Reader:
             if pname is None:
                 continue
             usage = pe.get("Usage") or "Input"
+            if pe.get("TagType") == "Alias":
+                aoi.aliases.append(AliasDecl(pname, pe.get("AliasFor"), self.span(pe)))
+                continue
             decl = self.var(pe, pname, "parameter", data_tag="DefaultData")
             if decl is None:
                 continue
