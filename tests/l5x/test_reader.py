@@ -119,3 +119,17 @@ def test_doctype_is_refused_at_its_position() -> None:
     with pytest.raises(XmlRejected) as exc:
         parse_xml(b'<?xml version="1.0"?>\n<!DOCTYPE a SYSTEM "http://example.invalid/x.dtd">\n<a/>')
     assert exc.value.line == 2
+
+
+def test_context_exports_with_studio_details_read_without_syntax_errors() -> None:
+    # Hand-made after the shape of real v32 exports: Use="Context", StringFamily UDT, ASCII
+    # and Octal radix members, L5K data across lines with tabs, an empty Prescan routine,
+    # Comments with Operand, a MESSAGE tag with its own data format.
+    p, diags = read("studio_features.L5X")
+    assert diags == []
+    pair = p.tags[0].init
+    assert isinstance(pair, n.StructInit)
+    # L5K [8, 1094861636, 8]: the hidden SINT host is 8 = bit 3 set, so Flag (BitNumber 3) = 1
+    assert {name: v.value for name, _, v in pair.members} == {"Flag": 1, "Code": 1094861636, "Mode": 8}  # type: ignore[union-attr]
+    assert p.tags[1].init.value == b"ok"  # type: ignore[union-attr]
+    assert [r.number for r in p.programs[0].routines[0].rungs] == [7, 8]
