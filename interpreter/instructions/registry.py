@@ -20,6 +20,7 @@ Impl = Callable[..., Any]
 
 IMPLEMENTATIONS: dict[str, Impl] = {}
 PRESCANS: dict[str, Impl] = {}
+_LOADED = False
 
 
 def implements(*names: str) -> Callable[[Impl], Impl]:
@@ -58,9 +59,13 @@ def load_all() -> None:
 
     from .. import instructions
 
+    global _LOADED
+    if _LOADED:  # lookups run per call site; scanning the package each time cost seconds on big projects
+        return
     for mod in pkgutil.iter_modules(instructions.__path__):
         if mod.name not in ("registry",):
             importlib.import_module(f"{instructions.__name__}.{mod.name}")
+    _LOADED = True
 
 
 def lookup(name: str, language: str) -> Impl | None:

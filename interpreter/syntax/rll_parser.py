@@ -20,6 +20,7 @@ from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .comments import strip_comments
 from .literals import decode_text
+from .st_lexer import SlowPath, contextual_tokens, fast_parse
 from .st_parser import AstBuilder, parse_st, tspan
 
 _ST_PREFIX = "st__"
@@ -224,14 +225,22 @@ def _end_pos(text: str) -> tuple[int, int]:
 
 
 def _parse_piece(text: str, path: str, o: _Origin, start: str) -> tuple[n.Rung | n.Comment | None, list[Diagnostic]]:
-    bad = _balance(text)
+    parser = _parser()
+    try:  # fast path: tokens already at file positions, no recovery needed
+        fast: n.Rung | n.Comment = fast_parse(
+            parser, text, start, lambda state: contextual_tokens(parser, text, state, o.line, o.col),
+        )
+        return fast, []
+    except SlowPath:
+        pass
+    bad = _balance(text)  # a rung that parses has balanced brackets: only errors need this scan
     if bad is not None:
         off, code, msg = bad
         line = text.count("\n", 0, off) + 1
         col = off - (text.rfind("\n", 0, off) + 1) + 1
         return None, [diag(code, msg, path, o.span(n.Span(line, col, line, col + 1)))]
     try:
-        result: n.Rung | n.Comment = _parser().parse(text, start=start)  # type: ignore[assignment]
+        result: n.Rung | n.Comment = parser.parse(text, start=start)  # type: ignore[assignment]
     except UnexpectedInput as e:
         return None, [_syntax_error(e, text, path, o)]
     _shift(result, o)

@@ -16,12 +16,14 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from functools import cache
 from typing import Any
 
 from lark import Lark
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer, LexerState, PatternStr, Token
+from lark.parse_tree_builder import ExpandSingleChild
 from lark.parsers.lalr_analysis import Shift
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -155,7 +157,7 @@ class StLexer(Lexer):
             else:
                 ttype = str(kind)
             col = start - line_start + 1
-            tok = Token(ttype, value, start, line, col, line, col + (stop - start), stop)
+            tok = make_token(ttype, value, start, line, col, line, col + (stop - start), stop)
             last = tok
             pos = stop
             if counter is not None:
@@ -174,21 +176,29 @@ class SlowPath(Exception):
     """The fast driver met a syntax error: parse again with lark's parser and its recovery."""
 
 
-def fast_parse(parser: Lark, text: str, start: str) -> Any:
+def fast_parse(
+    parser: Lark, text: str, start: str, tokens: Callable[[Callable[[], int]], Iterator[Token]] | None = None,
+) -> Any:
     """LALR parse of a well-formed text with lark's own tables and callbacks.
 
     The same shift/reduce steps as lark's `ParserState.feed_token`, in one loop with local
     variables (lark pays a method call, two asserts and rule comparisons per token). Any
     syntax error raises SlowPath so the caller re-parses with lark for exact error recovery.
+    `tokens(state)` supplies the tokens (default: the parser's StLexer over `text`); `state()`
+    is the current LALR state, for context-dependent lexing.
     """
     states, starts, ends = _tables(parser)
     end_state = ends[start]
     state_stack = [starts[start]]
     value_stack: list[Any] = []
-    lexer = parser.parser.lexer
-    assert isinstance(lexer, StLexer)
+    if tokens is None:
+        lexer = parser.parser.lexer
+        assert isinstance(lexer, StLexer)
+        stream = lexer.tokens(text, 0, len(text), lambda: states[state_stack[-1]])
+    else:
+        stream = tokens(lambda: state_stack[-1])
     try:
-        for tok in lexer.tokens(text, 0, len(text), lambda: states[state_stack[-1]]):
+        for tok in stream:
             ttype = tok.type
             while True:
                 shift, arg = states[state_stack[-1]][ttype]
@@ -197,6 +207,9 @@ def fast_parse(parser: Lark, text: str, start: str) -> Any:
                     value_stack.append(tok)
                     break
                 size, callback, origin = arg
+                if callback is None:  # `?rule` with one child: the value stays, only the state moves
+                    state_stack[-1] = states[state_stack[-2]][origin][1]
+                    continue
                 if size:
                     children = value_stack[-size:]
                     del state_stack[-size:]
@@ -210,6 +223,11 @@ def fast_parse(parser: Lark, text: str, start: str) -> Any:
             if shift:  # pragma: no cover - $END is never shifted
                 raise SlowPath
             size, callback, origin = arg
+            if callback is None:
+                state_stack[-1] = states[state_stack[-2]][origin][1]
+                if state_stack[-1] == end_state:
+                    return value_stack[-1]
+                continue
             children = value_stack[-size:] if size else []
             if size:
                 del state_stack[-size:]
@@ -227,6 +245,8 @@ def fast_parse(parser: Lark, text: str, start: str) -> Any:
 def _tables(parser: Lark) -> tuple[dict[int, dict[str, tuple[bool, Any]]], dict[str, int], dict[str, int]]:
     """lark's LALR table re-keyed by plain strings, reductions as (size, callback, goto name).
 
+    A reduction whose callback is None is an inlined `?rule` of one child.
+
     lark keys nonterminals by its Token subclass, whose Python-level __eq__ then runs on
     every dict probe; plain `str` keys keep lookups in C.
     """
@@ -240,6 +260,84 @@ def _tables(parser: Lark) -> tuple[dict[int, dict[str, tuple[bool, Any]]], dict[
             if action is Shift:
                 row[str(key)] = (True, arg)
             else:
-                row[str(key)] = (False, (len(arg.expansion), callbacks[arg], str(arg.origin.name)))
+                size, callback = len(arg.expansion), callbacks[arg]
+                if size == 1 and isinstance(callback, ExpandSingleChild):
+                    callback = None  # a pass-through reduction: fast_parse only moves the state
+                row[str(key)] = (False, (size, callback, str(arg.origin.name)))
         states[state] = row
     return states, dict(table.start_states), dict(table.end_states)
+
+
+def make_token(ttype: str, value: str, start: int, line: int, col: int, end_line: int, end_col: int, stop: int) -> Token:
+    """A lark Token without `Token.__new__`'s argument handling (same slots, same values)."""
+    tok = str.__new__(Token, value)
+    tok.type, tok.value, tok.start_pos, tok.end_pos = ttype, value, start, stop
+    tok.line, tok.column, tok.end_line, tok.end_column = line, col, end_line, end_col
+    return tok
+
+
+@dataclass(slots=True)
+class _StateScanner:
+    """One parser state's terminals as a single regex that also swallows leading blanks."""
+
+    regex: re.Pattern[str]
+    retype: dict[str, Any]  # lark's keyword callbacks (NAME -> keyword type)
+    ignore: frozenset[str]
+
+
+def _state_scanner(parser: Lark, state: int, cache: dict[int, _StateScanner]) -> _StateScanner:
+    basic = parser.parser.lexer.lexers[state]  # type: ignore[attr-defined]
+    terms = basic.scanner.terminals  # lark's own order (priority, width, name)
+    alts = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terms)
+    found = _StateScanner(re.compile(rf"([ \t\r\n\f]*)(?:{alts})", basic.scanner.g_regex_flags),
+                          dict(basic.callback), frozenset(basic.ignore_types))
+    cache[state] = found
+    return found
+
+
+def contextual_tokens(parser: Lark, text: str, state: Callable[[], int], line: int = 1, col: int = 1) -> Iterator[Token]:
+    """Tokens of `text` from lark's own per-state terminals (any grammar using lexer="contextual").
+
+    The terminal choice is exactly lark's (the terminals of the current parser state in
+    lark's order, with its keyword re-typing callbacks); lark's per-token bookkeeping is
+    left out and leading blanks are matched with the token. Positions are file positions
+    when text[0] sits at (line, col), so callers need not shift the spans afterwards.
+    """
+    cache: dict[int, _StateScanner] = parser.__dict__.setdefault("_logixst_scanners", {})
+    pos, end = 0, len(text)
+    line_start = 1 - col  # so that column = offset - line_start + 1 on the first line
+    while pos < end:
+        st = state()
+        sc = cache.get(st) or _state_scanner(parser, st, cache)
+        m = sc.regex.match(text, pos)
+        if m is None:
+            ws_end = pos + len(text[pos:]) - len(text[pos:].lstrip(" \t\r\n\f"))
+            if ws_end >= end:
+                return
+            line += text.count("\n", pos, ws_end)
+            if "\n" in text[pos:ws_end]:
+                line_start = text.rfind("\n", pos, ws_end) + 1
+            raise UnexpectedCharacters(text, ws_end, line, ws_end - line_start + 1, state=None)
+        start = m.end(1)
+        if start > pos:
+            nl = text.count("\n", pos, start)
+            if nl:
+                line += nl
+                line_start = text.rfind("\n", pos, start) + 1
+        ttype = m.lastgroup
+        assert ttype is not None
+        stop = m.end()
+        value = text[start:stop]
+        column = start - line_start + 1
+        nl = value.count("\n")
+        if nl:
+            last_nl = start + value.rindex("\n")
+            tok = make_token(ttype, value, start, line, column, line + nl, stop - last_nl, stop)
+            line, line_start = line + nl, last_nl + 1
+        else:
+            tok = make_token(ttype, value, start, line, column, line, column + (stop - start), stop)
+        pos = stop
+        if ttype in sc.retype:
+            tok = sc.retype[ttype](tok)
+        if tok.type not in sc.ignore:
+            yield tok

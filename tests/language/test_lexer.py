@@ -83,3 +83,44 @@ def test_recovery_resumes_after_the_error_not_at_the_start() -> None:
     # continue after END_VAR's position, so exactly one S005 and nothing else is reported.
     _, diags = parse_st("VAR\n  a : DINT\nEND_VAR\na := 1;\nb := a\n;", "semi.st")
     assert [(d.code, d.span.line) for d in diags] == [("S005", 3)]
+
+
+RUNGS = [
+    "XIC(a)XIO(b)OTE(c);",
+    "[XIC(a) ,XIC(b) [XIO(c),,XIC(d.5)] ]OTE(e);",
+    "TON(T,?,?)MOV(16#FF,d)CPT(r,r*2.0+v[i+1]/4.0)CMP(a+b>c);",
+    "GSV(WallClockTime,,LocalDateTime,dt[0])XIC(Local:1:I.Data.3)OTE(S:FS);",
+    "MAJ(ax,m,0,1.0,Units per sec,1.0,Units per sec2,S-Curve,100.0,100.0,% of Maximum);",
+    "XIC(x.[idx.y])OTE(z);",
+]
+
+
+@pytest.mark.parametrize("text", RUNGS)
+def test_rung_fast_path_matches_lark(text: str) -> None:
+    from interpreter.syntax import rll_parser as rp
+    from interpreter.syntax.st_lexer import contextual_tokens
+
+    parser = rp._parser()
+    origin = rp._Origin(7, 12)  # the rung text starts at line 7, column 12 of its file
+    slow = parser.parse(text, start="rung_only")
+    rp._shift(slow, origin)
+    fast = fast_parse(parser, text, "rung_only", lambda state: contextual_tokens(parser, text, state, 7, 12))
+    assert fast == slow
+
+
+def test_rung_fast_path_matches_lark_on_a_generated_export() -> None:
+    import re
+
+    from interpreter.syntax import rll_parser as rp
+    from interpreter.syntax.st_lexer import contextual_tokens
+
+    sys.path.insert(0, str(ROOT / "tests" / "benchmarks"))
+    from bench_l5x import export
+
+    parser = rp._parser()
+    texts = re.findall(r"<Text>\n<!\[CDATA\[(.*?)\]\]>", export(400_000))
+    assert len(texts) > 100
+    for text in texts:
+        slow = parser.parse(text, start="rung_only")
+        rp._shift(slow, rp._Origin(1, 1))
+        assert fast_parse(parser, text, "rung_only", lambda s, t=text: contextual_tokens(parser, t, s)) == slow
