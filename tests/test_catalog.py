@@ -19,7 +19,7 @@ PENDING_FAMILIES = {"motion": 4, "plcopen": 4}
 def _pending(ins) -> bool:  # type: ignore[no-untyped-def]
     if ins.family in PENDING_FAMILIES:
         return True
-    return ins.languages == frozenset({"rll"}) or ins.name in {"GSV", "SSV", "SBR", "RET", "TND", "SRT"}
+    return ins.languages == frozenset({"rll"}) or ins.name in {"GSV", "SSV", "SRT"}
 
 
 def test_every_instruction_has_docs() -> None:
@@ -37,8 +37,22 @@ def test_every_type_and_enum_is_documented() -> None:
         assert en.values, f"enum {en.name} has no values"
 
 
-# JSR is lowered by the compiler to the JSR opcode rather than dispatched to an implementation.
-INTRINSICS = {"JSR"}
+# Lowered by the compilers to inline bytecode rather than dispatched to an implementation
+# (ladder contacts, coils, compares, moves, expressions, file loops and program control).
+INTRINSICS = {
+    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
+    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
+}
+
+
+def test_intrinsics_are_the_compiler_lowered_set_and_have_no_implementation() -> None:
+    from interpreter.instructions.registry import LOWERED
+
+    assert INTRINSICS == LOWERED
+    for name in INTRINSICS:
+        ins = catalog().instruction(name, "rll")
+        assert ins is not None, name
+        assert lookup(name, "rll") is None, f"{name} is lowered: an implementation would never run"
 
 
 @pytest.mark.parametrize(

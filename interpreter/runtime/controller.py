@@ -6,6 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..compiler.ladder_compiler import compile_ladder
 from ..compiler.st_compiler import RoutineCompiler, compile_routine
 from ..semantics.checker import Checker
 from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
@@ -63,9 +64,12 @@ class Controller:
         self.routines: dict[str, Callable[..., None]] = {}
         self.prescans: list[Callable[..., None]] = []
         for i, r in enumerate(self.model.routines):
-            if r.language != "st":
+            if r.language == "st":
+                code = compile_routine(self.model, self.analysis, r, self.sites)
+            elif r.language == "rll":
+                code = compile_ladder(self.model, self.analysis, r, self.sites)
+            else:
                 continue
-            code = compile_routine(self.model, self.analysis, r, self.sites)
             self.routines[r.name.upper()] = self._translate(code, code.ops, f"_routine{i}")
             self.prescans.append(self._translate(code, code.prescan, f"_prescan{i}"))
         self.ns["_R"].update(self.routines)
@@ -79,10 +83,16 @@ class Controller:
         return self.ns[name]  # type: ignore[no-any-return]
 
     # ------------------------------------------------------------ running
-    def prescan(self) -> None:
+    def prescan(self) -> bool:
+        """Prescan every routine once (SPEC 3.2); False when it major-faulted (a bad subscript)."""
         self.ctx.steps = 0
-        for p in self.prescans:
-            p(self.T, self.ctx)
+        try:
+            for p in self.prescans:
+                p(self.T, self.ctx)
+        except MajorFault as f:
+            self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
+            return False
+        return True
 
     def scan(self) -> bool:
         """Run one normal scan; False when the controller major-faulted."""

@@ -350,9 +350,9 @@ class Checker:
         self.require_implementation(ins, c.name_span)
 
     def require_implementation(self, ins: Instruction, span: n.Span) -> None:
-        from ..instructions.registry import lookup
+        from ..instructions.registry import LOWERED, lookup
 
-        if ins.name != "JSR" and lookup(ins.name, self.language) is None:
+        if ins.name not in LOWERED and lookup(ins.name, self.language) is None:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
     def operands(self, c: n.Call, ins: Instruction) -> None:
