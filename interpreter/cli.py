@@ -13,7 +13,7 @@ from pathlib import Path
 
 from .diagnostics import Diagnostic, Severity, has_errors
 from .runtime.controller import DEFAULT_WATCHDOG, Controller, WatchError, to_json_value
-from .runtime.loader import InputError, load
+from .runtime.loader import SUFFIXES, InputError, load
 from .semantics.types import Elementary
 from .syntax.literals import parse_number, parse_string
 
@@ -213,7 +213,7 @@ def cmd_check(args: argparse.Namespace) -> int:
         if not p.exists():
             raise InputError(f"{p}: no such file or directory")
         if p.is_dir():
-            members = sorted(x for x in p.iterdir() if x.suffix.lower() in (".st", ".rll"))
+            members = sorted(x for x in p.iterdir() if x.suffix.lower() in SUFFIXES)
             if members:
                 groups.append(members)
         else:

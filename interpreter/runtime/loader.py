@@ -9,9 +9,11 @@ from ..diagnostics import Diagnostic
 from ..semantics.checker import Analysis, check_program
 from ..semantics.program import ProgramModel, build_program
 from ..syntax import nodes as n
+from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
+SUFFIXES = (".st", ".rll")  # program files `run` and `check` read
 
 
 class InputError(Exception):
@@ -29,7 +31,7 @@ def _require_file(path: Path) -> None:
     if not path.exists():
         raise InputError(f"{path}: no such file")
     if path.is_dir():
-        raise InputError(f"{path}: is a directory, expected a .st file")
+        raise InputError(f"{path}: is a directory, expected a .st or .rll file")
 
 
 def read_text(path: Path) -> str:
@@ -59,7 +61,10 @@ def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
     if suffix == ".st":
         routine, diags = parse_st(read_text(path), str(path))
         return [routine], diags
-    raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected .st)")
+    if suffix == ".rll":
+        routine, diags = parse_rll(read_text(path), str(path))
+        return [routine], diags
+    raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})")
 
 
 def load(paths: list[Path]) -> Loaded:
