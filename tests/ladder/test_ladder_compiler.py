@@ -1,4 +1,4 @@
-"""Ladder lowering on hand-built rungs (before the .rll parser lands): rung logic, outputs, prescan."""
+"""Ladder lowering checked on the Controller directly: rung logic, outputs, prescan, control flow."""
 
 from __future__ import annotations
 
@@ -9,61 +9,14 @@ from interpreter.runtime.loader import Loaded
 from interpreter.semantics.checker import Checker
 from interpreter.semantics.program import build_program
 from interpreter.syntax import nodes as n
-from interpreter.syntax.st_parser import parse_expression, parse_st
-
-
-def _operand(text: str) -> n.Expr:
-    text = text.strip()
-    if text in ("", "?"):
-        return n.Placeholder(n.NOWHERE)
-    return parse_expression(text)
-
-
-def _elements(s: str, i: int, stop: str) -> tuple[list[n.LadderElement], int]:
-    out: list[n.LadderElement] = []
-    while i < len(s) and s[i] not in stop:
-        if s[i].isspace():
-            i += 1
-        elif s[i] == "[":
-            legs: list[list[n.LadderElement]] = []
-            i += 1
-            while True:
-                leg, i = _elements(s, i, ",]")
-                legs.append(leg)
-                if s[i] == "]":
-                    i += 1
-                    break
-                i += 1
-            out.append(n.Branch(legs, n.NOWHERE))
-        else:
-            j = s.index("(", i)
-            name = s[i:j].strip()
-            depth, k, args, start = 0, j + 1, [], j + 1
-            while True:
-                ch = s[k]
-                if ch in "([":
-                    depth += 1
-                elif ch in ")]" and depth:
-                    depth -= 1
-                elif ch == "," and not depth:
-                    args.append(s[start:k])
-                    start = k + 1
-                elif ch == ")":
-                    args.append(s[start:k])
-                    break
-                k += 1
-            ops = [] if args == [""] else [_operand(a) for a in args]
-            out.append(n.LadderInstr(name, ops, n.NOWHERE, n.NOWHERE))
-            i = k + 1
-    return out, i
+from interpreter.syntax.rll_parser import parse_rll
+from interpreter.syntax.st_parser import parse_st
 
 
 def routine(name: str, decls: str, rungs: list[str]) -> n.Routine:
-    header, _ = parse_st(decls, f"{name}.rll") if decls else (n.Routine(name, "st", f"{name}.rll"), [])
-    r = n.Routine(name, "rll", f"{name}.rll", decls=header.decls, types=header.types)
-    for k, text in enumerate(rungs):
-        els, _ = _elements(text.rstrip(";"), 0, "")
-        r.rungs.append(n.Rung(els, n.NOWHERE, k))
+    r, diags = parse_rll(decls + "\n".join(rungs) + "\n", f"{name}.rll")
+    assert not diags, diags
+    r.name = name
     return r
 
 
@@ -338,15 +291,12 @@ def test_rcall_passes_the_rung_and_takes_the_rung_out(monkeypatch) -> None:  # t
 
 
 def test_endless_backward_jump_faults_the_watchdog() -> None:
-    from interpreter.syntax.nodes import Span
-
-    r = routine("main", "VAR n : DINT; END_VAR\n", ["CPT(n, 0);", "LBL(top) CPT(n, n + 1);", "JMP(top);"])
-    r.rungs[2].elements[0].span = Span(3, 1, 3, 10)  # type: ignore[union-attr]
+    r = routine("main", "VAR n : DINT; END_VAR\n", ["CPT(n, 0);", "LBL(top) CPT(n, n + 1);", "  JMP(top);"])
     ctl = Controller(load_ladder(r), watchdog=1000)
     ctl.prescan()
     assert not ctl.scan()
     f = ctl.major_fault
-    assert f is not None and (f.type, f.code, f.line) == (6, 1, 3)
+    assert f is not None and (f.type, f.code, f.line, f.column) == (6, 1, 4, 3)  # the JMP
     # rung 1 counts 1 step, each pass of the loop 3 (LBL, CPT, JMP): after pass k the count
     # is 1 + 3k. The check at pass 333's JMP sees 1000 (not over the budget of 1000), at
     # pass 334's 1003: the fault, with n = 334
