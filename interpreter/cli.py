@@ -14,7 +14,7 @@ from pathlib import Path
 from .diagnostics import Diagnostic, Severity, has_errors
 from .runtime.controller import DEFAULT_WATCHDOG, Controller, WatchError, to_json_value
 from .runtime.loader import SUFFIXES, InputError, load
-from .semantics.types import Elementary
+from .semantics.types import DataType, Elementary
 from .syntax.literals import parse_number, parse_string
 
 EXIT_OK, EXIT_VERIFY, EXIT_USAGE, EXIT_FAULT = 0, 1, 2, 3
@@ -138,7 +138,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     return EXIT_OK if ok else EXIT_FAULT
 
 
-def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], object]]:
+def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:
     if not exprs:
         exprs = [t.name for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
     out = []

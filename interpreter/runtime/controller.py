@@ -108,7 +108,7 @@ class Controller:
             self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
             return False
         except RecursionError:
-            self.major_fault = self._fault(4, 83, "JSR nesting too deep", ctx.site)
+            self.major_fault = self._fault(4, 84, True, "stack overflow: JSR calls nested too deep", ctx.site)
             return False
         finally:
             self.scans += 1
@@ -164,6 +164,7 @@ class Controller:
         def setter(value: object) -> None:
             if not isinstance(t, Elementary):
                 raise WatchError(f"'{text}' is a {t}: only elementary tags can be set")
+            _check_settable(text, value, t)
             store_ops = place_ops + [Ins(Op.CONST, (value, _literal_type(value, t))), Ins(Op.STORE, t)]
             tr2 = Translator(rc.code, self.ns, "_s", store_ops)
             tr2.indent = 1
@@ -174,6 +175,18 @@ class Controller:
             self.ns[sname](self.T, self.ctx)
 
         return (lambda: fn(self.T, self.ctx)), t, setter
+
+
+def _check_settable(text: str, value: object, t: Elementary) -> None:
+    """--set never wraps silently: the value must fit the tag's type (SPEC 9.12)."""
+    if isinstance(value, bytes | str):
+        raise WatchError(f"'{text}' is {t.name}: a string cannot be stored in it")
+    if t.kind is Kind.BOOL and value not in (0, 1):
+        raise WatchError(f"'{text}' is BOOL: use 1/0 or TRUE/FALSE, not {value!r}")
+    if t.kind is Kind.INT:
+        lo, hi = (-(1 << (t.bits - 1)), (1 << (t.bits - 1)) - 1) if t.signed else (0, (1 << t.bits) - 1)
+        if not lo <= value <= hi:  # type: ignore[operator]  # a REAL literal is rounded later, as by ':='
+            raise WatchError(f"'{text}' is {t.name}: {value} is outside {lo}..{hi}")
 
 
 def _literal_type(value: object, target: Elementary) -> Elementary:
@@ -201,5 +214,8 @@ def to_json_value(value: object, t: DataType | None) -> object:
         }
     if isinstance(t, ArrayType):
         assert isinstance(value, list)
-        return [to_json_value(v, t.elem) for v in value]
+        flat = [to_json_value(v, t.elem) for v in value]
+        for size in reversed(t.dims[1:]):  # row-major storage: nest from the last subscript out
+            flat = [flat[i:i + size] for i in range(0, len(flat), size)]
+        return flat
     return value if isinstance(value, int | float | str | bool) or value is None else str(value)

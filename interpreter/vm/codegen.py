@@ -250,7 +250,8 @@ class Translator:
         return "\n".join(head + self.lines + tail) + "\n"
 
     def op(self, ins: Ins) -> None:  # noqa: C901
-        op, arg, site = ins.op, ins.arg, ins.site
+        op, site = ins.op, ins.site
+        arg: Any = ins.arg
         st = self.stack
         if op is Op.TAG:
             st.append(_Place("T", str(arg)))
@@ -274,9 +275,9 @@ class Translator:
             st.append(_Place(p.container, p.key, str(bit), owner))
         elif op is Op.IBIT:
             owner = arg
-            b = self.pop_val().expr
+            bit_expr = self.pop_val().expr
             p = self.pop_place()
-            st.append(_Place(p.container, p.key, self.checked(b, owner.bits, site), owner))  # type: ignore[union-attr]
+            st.append(_Place(p.container, p.key, self.checked(bit_expr, owner.bits, site), owner))
         elif op is Op.CONST:
             value, t = arg  # type: ignore[misc]
             if isinstance(value, float) and (math.isinf(value) or math.isnan(value)):
@@ -304,7 +305,7 @@ class Translator:
         elif op is Op.STORE:
             v = self.pop_val()
             p = self.pop_place()
-            t: DataType = arg  # type: ignore[assignment]
+            t = arg
             if isinstance(t, StructType) and t.is_string:
                 self.line(f"_sset({p.container}[{p.key}], {v.expr})")
             elif not isinstance(t, Elementary):  # structure or array parameter: copy the value
@@ -354,12 +355,12 @@ class Translator:
         elif op is Op.BIN:
             self.binary(arg, site)  # type: ignore[arg-type]
         elif op is Op.CMP:
-            cmp, t = arg  # type: ignore[misc]
+            rel, t = arg
             b, a = self.pop_val(), self.pop_val()
             if isinstance(t, StructType):
-                st.append(_Val(f"(_scmp({a.expr}, {b.expr}) {_PY_CMP[cmp]} 0)", BOOL))
+                st.append(_Val(f"(_scmp({a.expr}, {b.expr}) {_PY_CMP[rel]} 0)", BOOL))
             else:
-                st.append(_Val(f"({a.expr} {_PY_CMP[cmp]} {b.expr})", BOOL))
+                st.append(_Val(f"({a.expr} {_PY_CMP[rel]} {b.expr})", BOOL))
         elif op is Op.FN:
             key, t = arg  # type: ignore[misc]
             v = self.pop_val()
@@ -505,8 +506,8 @@ class Translator:
         elif op == "MOD" and y.isdigit() and int(y) > 0:
             # Constant positive divisor: no fault, |result| < divisor so no wrap; the sign
             # follows the dividend (A - TRUNC(A/B)*B), unlike Python's %.
-            a = self.fresh()
-            st.append(_Val(f"({a} % {y} if ({a} := {x}) >= 0 else -(-{a} % {y}))", t))
+            tmp = self.fresh()
+            st.append(_Val(f"({tmp} % {y} if ({tmp} := {x}) >= 0 else -(-{tmp} % {y}))", t))
         elif op == "MOD":
             st.append(_Val(f"_imod(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
         elif op == "**":
