@@ -1,7 +1,7 @@
 """The catalog is the single source of truth: every entry documented, every entry executable.
 
-Instructions that belong to open issues (ladder: issue 3, motion: issue 4) are listed in
-PENDING; the checker reports U304 for them instead of running them. The list may only shrink.
+Instructions that belong to open issues (motion: issue 4) are listed in PENDING; the checker
+reports U304 for them instead of running them. The list may only shrink.
 """
 
 from __future__ import annotations
@@ -12,14 +12,12 @@ from interpreter.instructions.registry import lookup
 from interpreter.semantics.types import TypeTable
 from stdlib import catalog
 
-# Ladder-only instructions are issue 3; motion and PLCopen are issue 4 (and later).
+# Motion and PLCopen are issue 4 (and later).
 PENDING_FAMILIES = {"motion": 4, "plcopen": 4}
 
 
 def _pending(ins) -> bool:  # type: ignore[no-untyped-def]
-    if ins.family in PENDING_FAMILIES:
-        return True
-    return ins.languages == frozenset({"rll"}) or ins.name in {"GSV", "SSV", "SRT"}
+    return ins.family in PENDING_FAMILIES
 
 
 def test_every_instruction_has_docs() -> None:

@@ -374,6 +374,20 @@ class Checker:
             self.operand(ins, op, e, i)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
+        if ins.name in ("GSV", "SSV") and len(args) >= 3:
+            self.system_attribute(ins, args)
+
+    def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
+        """U303 for a GSV/SSV class and attribute pair the simulator does not model."""
+        from ..instructions.ladder_system import attribute_names, unsupported
+
+        cls, attr = self.a.enum_of.get(id(args[0])), self.a.enum_of.get(id(args[2]))
+        if cls is None or attr is None:
+            return
+        c, a = attribute_names(cls, attr)
+        if unsupported(c, a, write=ins.name == "SSV"):
+            what = "set" if ins.name == "SSV" else "read"
+            self.err("U303", f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller", args[2].span)
 
     def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
         if op.enum is not None and self.enum_operand(ins, op, e):
@@ -388,6 +402,10 @@ class Checker:
         if op.format == "label":
             return
         if isinstance(e, n.Placeholder):
+            return
+        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.model.tag(e.ident) is None:
+            self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
+            self.a.type_of[id(e)] = DINT
             return
         if op.format == "array":
             self.array_operand(ins, op, e)
