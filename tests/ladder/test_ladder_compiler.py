@@ -256,6 +256,7 @@ def test_transitional_call_contract(monkeypatch) -> None:  # type: ignore[no-unt
     from interpreter.instructions import registry
 
     calls: list[bool] = []
+    registry.load_all()  # the real modules register first; this test's stand-in then wins
     monkeypatch.setitem(registry.IMPLEMENTATIONS, "MSO@rll", lambda ctx, rung, axis, mc: calls.append(rung))
     decl = "VAR go : BOOL; ax : AXIS_VIRTUAL; mc : MOTION_INSTRUCTION; END_VAR\n"
     seq = [1, 1, 0, 0, 1, 1, 1, 0]
@@ -264,30 +265,18 @@ def test_transitional_call_contract(monkeypatch) -> None:  # type: ignore[no-unt
     assert calls == [True, False, False, True, False]
 
 
-def test_rcall_passes_the_rung_and_takes_the_rung_out(monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    """A non-lowered input instruction: its result is the rung condition from there on."""
-    from interpreter.instructions import registry
-
-    seen: list[bool] = []
-
-    def ons(ctx, rung, storage):  # type: ignore[no-untyped-def]
-        seen.append(rung)
-        out = rung and not storage.get()
-        storage.set(rung)
-        return out
-
-    monkeypatch.setitem(registry.IMPLEMENTATIONS, "ONS", ons)
-    decl = "VAR go, mem, pulse, cnt_en : BOOL; END_VAR\n"
-    seq = [1, 1, 0, 1]
-    ctl = Controller(load_ladder(routine("main", decl, ["XIC(go) ONS(mem) OTE(pulse);"])))
-    ctl.prescan()
-    pulses = []
-    for g in seq:
+def test_rcall_result_is_the_rung_out_and_prescan_actions_run() -> None:
+    """ONS (an implemented input instruction): prescan sets its storage bit, so a rung that is
+    already true when Run starts does not pulse (1756-RM003 ONS table); later rising edges do."""
+    decl = "VAR go, mem, pulse : BOOL; END_VAR\n"
+    seq = [1, 1, 0, 1, 1]
+    ctl = run(decl, ["XIC(go) ONS(mem) OTE(pulse);"], sets={"go": 1})
+    pulses = [get(ctl, "pulse")]
+    for g in seq[1:]:
         ctl.reference("go")[2](g)
         ctl.scan()
         pulses.append(get(ctl, "pulse"))
-    assert seen == [True, True, False, True]
-    assert pulses == [1, 0, 0, 1]
+    assert pulses == [0, 0, 0, 1, 0]
 
 
 def test_endless_backward_jump_faults_the_watchdog() -> None:
