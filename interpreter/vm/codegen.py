@@ -439,6 +439,7 @@ class Translator:
             v = self.pop_val()
             p = self.pop_place()
             tname = self.const_name(arg)
+            self.line(f"ctx.site = {site}")  # an overflow records minor fault 4/4 here
             if p.bit is not None:
                 pt = p.owner
                 assert pt is not None

@@ -5,38 +5,24 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ..instructions.ladder_status import _int_overflow, set_flags
 from ..semantics.types import Elementary, Kind
 from .context import ExecContext, MajorFault
-from .values import convert, real_to_int, wrap
+from .values import convert
 
 
 def store_flags(ctx: ExecContext, x: Any, t: Elementary) -> int | float:
-    """Convert `x` for storage in `t` and set S:N, S:Z, S:V from the stored value.
-
-    S:V is set when the value does not fit: an integer out of the destination's range, a
-    REAL that is not finite or out of range for an integer destination, or a finite value
-    that becomes infinite in a REAL.
-    """
-    status = ctx.status
+    """Convert `x` for storage in `t`; math status flags as every ladder math instruction
+    sets them (instructions/ladder_status.py: N, Z from the stored value, V on overflow with
+    minor fault 4/4 at `ctx.site`, C cleared)."""
+    v = convert(x, t)
     if t.kind is Kind.REAL:
-        v = convert(x, t)
-        over = math.isinf(v) and not (isinstance(x, float) and math.isinf(x))
-    elif t.kind is Kind.BOOL:
-        v = 1 if x else 0
-        over = False
-    elif isinstance(x, float):
-        if math.isnan(x) or math.isinf(x):
-            v, over = 0 if math.isnan(x) else wrap(real_to_int(x), t.bits, t.signed), True
-        else:
-            r = real_to_int(x)
-            v = wrap(r, t.bits, t.signed)
-            over = v != r
+        over = not math.isfinite(v)
+    elif t.kind is Kind.INT:
+        over = _int_overflow(x, t)
     else:
-        v = wrap(int(x), t.bits, t.signed)
-        over = v != x
-    status["N"] = 1 if v < 0 else 0
-    status["Z"] = 1 if v == 0 else 0
-    status["V"] = 1 if over else 0
+        over = False
+    set_flags(ctx, v, over)
     return v
 
 

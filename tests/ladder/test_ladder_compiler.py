@@ -179,6 +179,8 @@ def test_mov_sets_math_flags_and_wraps() -> None:
     # 200 does not fit a SINT: stored 200 - 256 = -56, S:V and S:N set, S:Z clear
     ctl = run(decl, ["MOV(src, s) XIC(S:N) OTE(neg);", "XIC(S:Z) OTE(zero);", "XIC(S:V) OTE(ovf);"])
     assert (get(ctl, "s"), get(ctl, "neg"), get(ctl, "zero"), get(ctl, "ovf")) == (-56, 1, 0, 1)
+    # the overflow is also minor fault 4/4 at the MOV (line 2, column 1; the header is line 1)
+    assert [(f.type, f.code, f.major, f.line, f.column) for f in ctl.faults()] == [(4, 4, False, 2, 1)]
 
 
 def test_compares_at_the_equal_boundary_and_mixed_types() -> None:
