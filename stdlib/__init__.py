@@ -38,6 +38,7 @@ class EnumValue:
 class Enumeration:
     name: str
     values: tuple[EnumValue, ...]
+    counts: bool = False  # any positive number is accepted too (FAL/FSC Mode: elements per scan)
 
     def lookup(self, text: str) -> EnumValue | None:
         key = enum_key(text)
@@ -62,6 +63,8 @@ class Operand:
     enum: str | None = None
     optional: bool = False
     doc: str = ""
+    placeholder: bool = False  # ladder may write `?` or leave it empty: the value lives in the tag
+    expression: bool = False  # takes an expression (CMP, CPT, FAL, FSC), not just a tag or literal
 
 
 @dataclass(frozen=True, slots=True)
@@ -75,6 +78,7 @@ class Instruction:
     operands: tuple[Operand, ...]
     family: str
     variadic: bool = False
+    input: bool = False  # ladder input instruction: it can make the rung condition false
 
     @property
     def key(self) -> str:
@@ -151,6 +155,8 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
                 enum=o.get("enum"),
                 optional=bool(o.get("optional", False)),
                 doc=o.get("doc", ""),
+                placeholder=bool(o.get("placeholder", False)),
+                expression=bool(o.get("expression", False)),
             )
         )
     return Instruction(
@@ -163,6 +169,7 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
         operands=tuple(ops),
         family=family,
         variadic=bool(raw.get("variadic", False)),
+        input=bool(raw.get("input", False)),
     )
 
 
@@ -184,7 +191,7 @@ def catalog() -> Catalog:
             values = tuple(
                 EnumValue(str(v["text"]), int(v["value"]), v.get("doc", "")) for v in e["values"]
             )
-            cat.enums[e["name"]] = Enumeration(e["name"], values)
+            cat.enums[e["name"]] = Enumeration(e["name"], values, bool(e.get("counts", False)))
         for raw in data.get("instruction", []):
             ins = _instruction(raw, path.stem, path.name)
             cat.instructions.append(ins)

@@ -12,7 +12,9 @@ from dataclasses import dataclass, field
 from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
+from ..instructions.registry import LOWERED
 from ..syntax import nodes as n
+from .ladder_check import LadderChecks
 from .program import ProgramModel, Tag, const_number
 from .types import (
     BOOL,
@@ -30,6 +32,7 @@ from .types import (
 SYSTEM_FLAGS = {"S:FS": "FS", "S:N": "N", "S:Z": "Z", "S:V": "V", "S:C": "C", "S:MINOR": "MINOR"}
 ST_SYSTEM_FLAGS = {"S:FS"}
 LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
+# Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
 REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
 
 
@@ -83,7 +86,7 @@ def describe(t: DataType | None) -> str:
     return "unknown" if t is None else str(t)
 
 
-class Checker:
+class Checker(LadderChecks):
     """One pass over a ProgramModel's routines."""
 
     def __init__(self, model: ProgramModel) -> None:
@@ -105,6 +108,8 @@ class Checker:
             self.check_initialisers(r)
             if r.language == "st":
                 self.stmts(r.body)
+            elif r.language == "rll":
+                self.rungs(r.rungs)
         return self.a
 
     def err(self, code: str, msg: str, span: n.Span) -> None:
@@ -295,26 +300,40 @@ class Checker:
             if ins is not None:
                 self.fb_call(c, tag, ins)
                 return
-        ins = self.cat.instruction(c.name, self.language)
+        named = next((a for a in c.args if a.name is not None), None)
+        self.instruction(c, c.name, c.name_span, c.span, [a.value for a in c.args], named)
+
+    def ladder_instr(self, i: n.LadderInstr) -> None:
+        self.instruction(i, i.name, i.name_span, i.span, i.operands, None)
+
+    def instruction(
+        self, node: n.Call | n.LadderInstr, name: str, name_span: n.Span, span: n.Span,
+        args: list[n.Expr], named: n.Arg | None,
+    ) -> None:
+        """An instruction call, ST statement or ladder element alike: catalog entry and operands."""
+        ins = self.cat.instruction(name, self.language)
         if ins is None:
-            other = self.cat.instruction_any(c.name)
+            other = self.cat.instruction_any(name)
             if other is not None:
-                self.err("E126", f"{c.name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}", c.name_span)
+                self.err("E126", f"{name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}", name_span)
             else:
                 names = sorted({i.name for i in self.cat.instructions})
-                self.err("E103", f"unknown instruction '{c.name}'{self.suggest(c.name, names)}", c.name_span)
-            for a in c.args:
-                self.expr(a.value)
+                self.err("E103", f"unknown instruction '{name}'{self.suggest(name, names)}", name_span)
+            for e in args:
+                self.expr(e)
             return
         if ins.kind == "function":
-            self.err("E126", f"{ins.name} is a function: use it in an expression", c.name_span)
+            self.err("E126", f"{ins.name} is a function: use it in an expression", name_span)
             return
-        self.a.call_of[id(c)] = ins
-        self.operands(c, ins)
-        self.require_implementation(ins, c.name_span)
+        self.a.call_of[id(node)] = ins
+        if named is not None:
+            self.err("E130", "named parameters are only for function block instances", named.span)
+        else:
+            self.operands(ins, args, span)
+        self.require_implementation(ins, name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
-                diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, c.span)
+                diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, span)
             )
 
     def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
@@ -349,23 +368,21 @@ class Checker:
         self.a.fb_of[id(c)] = fb
         self.require_implementation(ins, c.name_span)
 
-    def require_implementation(self, ins: Instruction, span: n.Span) -> None:
-        from ..instructions.registry import LOWERED, lookup
+    def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
+        from ..instructions.registry import lookup
 
-        if ins.name not in LOWERED and lookup(ins.name, self.language) is None:
+        language = language or self.language
+        if ins.name in LOWERED:  # compiled inline, in ST (JSR SBR RET TND) and ladder alike
+            return
+        if lookup(ins.name, language) is None:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
-    def operands(self, c: n.Call, ins: Instruction) -> None:
-        for a in c.args:
-            if a.name is not None:
-                self.err("E130", "named parameters are only for function block instances", a.span)
-                return
-        args = [a.value for a in c.args]
+    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span) -> None:
         ops = ins.operands
         required = sum(1 for o in ops if not o.optional)
         if len(args) < required or (len(args) > len(ops) and not ins.variadic):
             expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
-            self.err("E104", f"{ins.name} takes {expect} operands, {len(args)} given", c.span)
+            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {len(args)} given", span)
             for e in args:
                 self.expr(e)
             return
@@ -390,7 +407,15 @@ class Checker:
             self.err("U303", f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller", args[2].span)
 
     def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
+        if isinstance(e, n.Placeholder):
+            if not op.placeholder:
+                self.err("E128", f"{ins.name} operand {op.name} needs a value here, not a placeholder", e.span)
+            return
         if op.enum is not None and self.enum_operand(ins, op, e):
+            return
+        if self.language == "rll" and not op.expression and _is_expression(e):
+            self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
+            self.expr(e)
             return
         if op.format == "routine":
             if not isinstance(e, n.Name):
@@ -400,8 +425,6 @@ class Checker:
                 self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
             return
         if op.format == "label":
-            return
-        if isinstance(e, n.Placeholder):
             return
         if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.model.tag(e.ident) is None:
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
@@ -473,7 +496,7 @@ class Checker:
             return True
         num = const_number(e)
         if isinstance(num, int):
-            if en.by_value(num) is None:
+            if en.by_value(num) is None and not (en.counts and num > 0):
                 vals = ", ".join(f"{x.value} {x.label}" for x in en.values)
                 self.err("E109", f"{num} is not a value of {ins.name} {op.name} ({vals})", e.span)
             else:
@@ -631,8 +654,20 @@ class Checker:
             return t
         return DINT if t.is_bool else t
 
+    def st_function(self, name: str) -> Instruction | None:
+        """The catalog entry for a name called in an expression; ladder mnemonics (SQR) map to
+        the function their rung instruction names as alias (SQRT)."""
+        ins = self.cat.instruction(name, "st")
+        if (ins is None or ins.kind != "function") and self.language == "rll":
+            rung_ins = self.cat.instruction(name, "rll")
+            for other in (rung_ins.name, *rung_ins.aliases) if rung_ins is not None else ():
+                f = self.cat.instruction(other, "st")
+                if f is not None and f.kind == "function":
+                    return f
+        return ins
+
     def function(self, c: n.Call) -> DataType | None:
-        ins = self.cat.instruction(c.name, "st")
+        ins = self.st_function(c.name)
         if ins is None or ins.kind != "function":
             for a in c.args:
                 self.expr(a.value)
@@ -643,7 +678,7 @@ class Checker:
                 self.err("E103", f"unknown function '{c.name}'{self.suggest(c.name.upper(), fnames)}", c.name_span)
             return None
         self.a.call_of[id(c)] = ins
-        self.require_implementation(ins, c.name_span)
+        self.require_implementation(ins, c.name_span, "st")  # functions are ST entries, in CPT too
         if len(c.args) != len(ins.operands):
             self.err("E104", f"{ins.name} takes {len(ins.operands)} argument(s), {len(c.args)} given", c.span)
             return None
@@ -658,16 +693,23 @@ class Checker:
         return t
 
 
+def _is_expression(e: n.Expr) -> bool:
+    """An operand that computes (a + b, ABS(x), NOT b), as opposed to a tag or a literal (-5)."""
+    if isinstance(e, n.Unary):
+        return not (e.op == "-" and isinstance(e.operand, n.Literal))
+    return isinstance(e, n.Binary | n.Call)
+
+
 def _enum_text(e: n.Expr) -> str | None:
     """Operand text that may be an enumeration word (`Once`, `%ofTime`, `S-Curve`)."""
     if isinstance(e, n.Name):
         return e.ident
     if isinstance(e, n.EnumText):
         return e.text
-    if isinstance(e, n.Binary) and e.op == "-":
+    if isinstance(e, n.Binary) and e.op in ("-", "/"):  # S-Curve, HIGH/LOW
         left, right = _enum_text(e.left), _enum_text(e.right)
         if left is not None and right is not None:
-            return f"{left}-{right}"
+            return f"{left}{e.op}{right}"
     return None
 
 
