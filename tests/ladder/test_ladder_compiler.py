@@ -6,7 +6,7 @@ from typing import Any
 
 from interpreter.runtime.controller import Controller
 from interpreter.runtime.loader import Loaded
-from interpreter.semantics.checker import Checker
+from interpreter.semantics.checker import check_program
 from interpreter.semantics.program import build_program
 from interpreter.syntax import nodes as n
 from interpreter.syntax.rll_parser import parse_rll
@@ -21,37 +21,11 @@ def routine(name: str, decls: str, rungs: list[str]) -> n.Routine:
 
 
 def load_ladder(*routines: n.Routine) -> Loaded:
-    """What the rllparse checker will do: type operands, resolve enums, map instructions."""
     model, diags = build_program(routines[0].name, list(routines))
-    assert not diags, diags
-    ch = Checker(model)
-    a = ch.run()
-    for r in routines:
-        if r.language != "rll":
-            continue
-        ch.language, ch.path = "rll", r.path
-        stack: list[Any] = [el for rung in r.rungs for el in rung.elements]
-        while stack:
-            el = stack.pop()
-            if isinstance(el, n.Branch):
-                stack.extend(x for leg in el.legs for x in leg)
-                continue
-            ins = ch.cat.instruction(el.name, "rll")
-            assert ins is not None, el.name
-            a.call_of[id(el)] = ins
-            for i, e in enumerate(el.operands):
-                op = ins.operands[min(i, len(ins.operands) - 1)]
-                if ins.name in ("JMP", "LBL"):
-                    continue
-                if op.enum == "FAL_Mode" and isinstance(e, n.Literal):
-                    continue  # numeric mode: elements per scan
-                if op.enum is not None and ch.enum_operand(ins, op, e):
-                    continue
-                if op.format == "routine" or isinstance(e, n.Placeholder):
-                    continue
-                ch.expr(e)
-    assert not a.diags, a.diags
-    return Loaded(model, a, [])
+    analysis = check_program(model)
+    errors = [d for d in diags + analysis.diags if not d.code.startswith("W")]
+    assert not errors, errors
+    return Loaded(model, analysis, [])
 
 
 def run(decls: str, rungs: list[str], scans: int = 1, sets: dict[str, Any] | None = None,
