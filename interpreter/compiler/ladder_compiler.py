@@ -136,7 +136,12 @@ class LadderCompiler(RoutineCompiler):
             self.emit(Op.TGET, (self.mcr, BOOL))  # inside a false MCR zone every rung starts false
         else:
             self.emit(Op.CONST, (1, BOOL))
-        self.elements(rung.elements, 0)
+        *head, tail = rung.elements
+        self.elements(head, 0)
+        if isinstance(tail, n.Branch) and not self.is_pure([tail]):
+            self.branch(tail, 0, result=False)  # nothing follows: the legs' OR is not needed
+        else:
+            self.elements([tail], 0)
         self.emit(Op.POP)
         self.site_span = None
 
@@ -153,6 +158,11 @@ class LadderCompiler(RoutineCompiler):
 
     def hold(self, depth: int) -> int:
         """Keep the rung condition (top of stack) in this depth's temporary; leave it there too."""
+        last = self.ops[-1] if self.ops else None
+        if last is not None and last.op is Op.TGET and last.arg[1] is BOOL:  # type: ignore[index]
+            # Already a temporary of this or an outer depth, which nothing at this depth
+            # reassigns before the rung moves on: use it as it is.
+            return last.arg[0]  # type: ignore[index, no-any-return]
         k = self.rung_temp(depth)
         self.emit(Op.TSET, k)
         self.emit(Op.TGET, (k, BOOL))
@@ -174,7 +184,7 @@ class LadderCompiler(RoutineCompiler):
                 return False
         return True
 
-    def branch(self, b: n.Branch, depth: int) -> None:
+    def branch(self, b: n.Branch, depth: int, result: bool = True) -> None:
         if all(self.is_pure(leg) for leg in b.legs):
             # Inputs only: in AND (leg1 OR leg2 ...), one expression, nothing stored.
             for i, leg in enumerate(b.legs):
@@ -190,11 +200,14 @@ class LadderCompiler(RoutineCompiler):
         for i, leg in enumerate(b.legs):
             self.emit(Op.TGET, (k_in, BOOL))  # every leg starts with the incoming condition
             self.elements(leg, depth + 1)
+            if not result:
+                self.emit(Op.POP)
+                continue
             if i:
                 self.emit(Op.TGET, (acc, BOOL))
                 self.emit(Op.LOR)
             self.emit(Op.TSET, acc)
-        self.emit(Op.TGET, (acc, BOOL))
+        self.emit(Op.TGET, (acc, BOOL) if result else (k_in, BOOL))
 
     def name_of(self, ins: n.LadderInstr) -> str:
         cat = self.catalog_entry(ins)
