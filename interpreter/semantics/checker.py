@@ -386,8 +386,15 @@ class Checker(LadderChecks):
             for e in args:
                 self.expr(e)
             return
+        inputs_end = len(ops)
+        if ins.name == "JSR" and len(args) > 1:  # JSR(Routine, n, n inputs..., returns...)
+            count = const_number(args[1])
+            inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
         for i, e in enumerate(args):
-            op = ops[i] if i < len(ops) else ops[-1]
+            if ins.name == "JSR" and i >= 2:
+                op = ops[2] if i < inputs_end else ops[3]
+            else:
+                op = ops[i] if i < len(ops) else ops[-1]
             self.operand(ins, op, e, i)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)

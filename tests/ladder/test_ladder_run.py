@@ -411,3 +411,44 @@ def test_ladder_file_without_header_uses_tags_of_the_other_files(st: Runner, tmp
     r = st.cli("run", str(main), str(tmp_path / "logic.rll"), "--json", "--set", "go=1", "--watch", "lamp")
     assert r.code == 0, r.err
     assert r.tags == {"lamp": True}
+
+
+def test_st_jsr_passes_expressions_into_a_ladder_subroutine(st: Runner) -> None:
+    main = st.write("main.st", "VAR a : DINT := 2; b : DINT := 3; r, p, q, s : DINT; END_VAR\n"
+                               "JSR(sub, 2, a + 1, b * 2, r);\n")
+    st.write("sub.rll", "SBR(p, q);\nCPT(s, p * 10 + q);\nRET(s);\n")
+    r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--watch", "r")
+    assert r.code == 0, r.err
+    # p = 2 + 1 = 3, q = 3 * 2 = 6: 3 * 10 + 6 = 36
+    assert r.tags == {"r": 36}
+
+
+def test_st_tnd_and_first_scan_flag_in_ladder(st: Runner) -> None:
+    main = st.write("main.st", "VAR n, m, f : DINT; END_VAR\nn := n + 1;\nJSR(lad);\nTND();\nm := m + 1;\n")
+    st.write("lad.rll", "XIC(S:FS) CPT(f, f + 1);\n")
+    r = st.cli("run", str(main), str(st.tmp / "lad.rll"), "--scans", "3", "--json",
+               "--watch", "n", "--watch", "m", "--watch", "f")
+    assert r.code == 0, r.err
+    # TND ends the ST routine before m; S:FS is true in the first normal scan only
+    assert r.tags == {"n": 3, "m": 0, "f": 1}
+
+
+def test_afi_makes_the_rest_of_the_rung_false(st: Runner) -> None:
+    src = """VAR a : BOOL := TRUE; q1, q2, q3 : BOOL; END_VAR
+    XIC(a) OTE(q1) AFI() OTE(q2);
+    [AFI(), XIC(a)] OTE(q3);
+    """
+    # q1 sees a = 1 before the AFI; q2 after it is false; the branch is AFI OR a = 1
+    assert tags(st, src, "q1", "q2", "q3", args=("--set", "q2=1")) == {"q1": True, "q2": False, "q3": True}
+
+
+def test_subscript_fault_points_at_the_instruction(st: Runner) -> None:
+    src = """VAR i : DINT := 7; arr : DINT[5]; q : BOOL; END_VAR
+    XIC(q) MOV(1, arr[i]);
+    NOP() MOV(i, arr[i]);
+    """
+    r = st.run(src, "i", name="main.rll", args=("--set", "q=0"))
+    # the first MOV is on a false rung: it does not run, so no subscript check (1756-PM004);
+    # the second faults 4/20 at its mnemonic: line 3, column 11
+    assert r.code == 3
+    assert [(f["type"], f["code"], f["line"], f["column"]) for f in r.json["faults"]] == [(4, 20, 3, 11)]
