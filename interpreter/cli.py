@@ -13,7 +13,7 @@ from pathlib import Path
 
 from .diagnostics import Diagnostic, Severity, has_errors
 from .runtime.controller import DEFAULT_WATCHDOG, Controller, WatchError, to_json_value
-from .runtime.loader import SUFFIXES, InputError, load
+from .runtime.loader import SUFFIXES, InputError, is_project, load
 from .semantics.types import DataType, Elementary
 from .syntax.literals import parse_number, parse_string
 
@@ -44,9 +44,11 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--trace", type=Path, metavar="FILE.csv")
     run.add_argument("--json", action="store_true")
     run.add_argument("--watchdog", type=int, default=DEFAULT_WATCHDOG, metavar="N")
+    run.add_argument("--tags", type=Path, metavar="FILE.L5X", help="controller tags and data types for .st/.rll files")
     check = sub.add_parser("check", help="verify without running")
     check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
     check.add_argument("--format", choices=["text", "json", "github", "sarif"], default="text")
+    check.add_argument("--tags", type=Path, metavar="FILE.L5X", help="controller tags and data types for .st/.rll files")
     return p
 
 
@@ -91,7 +93,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--duration must be a finite number >= 0")
     if args.watchdog <= 0:
         raise UsageError("--watchdog must be > 0")
-    loaded = load(args.programs)
+    loaded = load(args.programs, args.tags)
     if has_errors(loaded.diagnostics):
         _print_diags(loaded.diagnostics)
         if args.json:
@@ -140,7 +142,7 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:
     if not exprs:
-        exprs = [t.name for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
+        exprs = [t.qualified for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
     out = []
     for w in exprs:
         try:
@@ -216,13 +218,16 @@ def cmd_check(args: argparse.Namespace) -> int:
             members = sorted(x for x in p.iterdir() if x.suffix.lower() in SUFFIXES)
             if members:
                 groups.append(members)
+            groups.extend([x] for x in sorted(p.iterdir()) if is_project(x))
+        elif is_project(p):
+            groups.append([p])  # each .L5X is one project (SPEC 9.8)
         else:
             files.append(p)
     if files:
         groups.insert(0, files)
     diags: list[Diagnostic] = []
     for g in groups:
-        diags.extend(load(g).diagnostics)
+        diags.extend(load(g, None if is_project(g[0]) else args.tags).diagnostics)
     diags.sort(key=lambda d: d.sort_key())
     _emit_check(diags, args.format)
     return EXIT_VERIFY if has_errors(diags) else EXIT_OK

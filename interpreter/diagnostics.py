@@ -75,6 +75,7 @@ _TABLE: list[tuple[str, str]] = [
     ("U302", "protected (encoded) content not supported"),
     ("U303", "system attribute not simulated"),
     ("U304", "instruction recognised but not executable yet"),
+    ("U305", "alias tag not simulated"),
 ]
 
 _SEVERITY = {"S": Severity.ERROR, "E": Severity.ERROR, "W": Severity.WARNING, "U": Severity.ERROR}

@@ -331,6 +331,8 @@ class RoutineCompiler:
         if isinstance(e, n.Name):
             tag = self.a.tag_of[id(e)]
             self.emit(Op.TAG, tag.slot)
+            for pos in tag.access:  # AOI frame members, alias paths
+                self.emit(Op.MEMBER, pos)
         elif isinstance(e, n.Member):
             self.place(e.base)
             bt = self.type_of(e.base)
@@ -437,7 +439,7 @@ class RoutineCompiler:
                 self.emit(Op.STORE, t, s.span)
             elif isinstance(s, n.CallStmt) and id(s.call) in self.a.call_of:
                 ins = self.a.call_of[id(s.call)]
-                if ins.name != "JSR" and lookup_prescan(ins.name, "st") is not None:
+                if ins.name != "JSR" and (ins.family == "aoi" or lookup_prescan(ins.name, "st") is not None):
                     count = self.operands(s.call, ins)
                     self.emit(Op.PRESCAN, (ins.key, count), s.span)
         self.ops = main_ops

@@ -179,7 +179,7 @@ def _shift(ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: objec
         raise ctx.major(4, 20, f"{n} bits do not fit the array")
     value = 0
     for i in range(words):
-        value |= (int(arr.get(i)) & WORD) << (32 * i)
+        value |= (int(arr.elements[arr.start + i]) & WORD) << (32 * i)
     bit_in = 1 if source else 0
     if left:
         ctl[UL] = (value >> (n - 1)) & 1

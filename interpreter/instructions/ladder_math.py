@@ -82,7 +82,7 @@ def _carry_bits(dest: Dest) -> int:
 def add(ctx: ExecContext, rung: bool, a: Number, b: Number, dest: Dest) -> None:
     if not rung:
         return
-    if _all_int(a, b):
+    if isinstance(a, int) and isinstance(b, int):
         m = (1 << _carry_bits(dest)) - 1
         store(ctx, dest, a + b, carry=(a & m) + (b & m) > m)
     else:
@@ -93,7 +93,7 @@ def add(ctx: ExecContext, rung: bool, a: Number, b: Number, dest: Dest) -> None:
 def sub(ctx: ExecContext, rung: bool, a: Number, b: Number, dest: Dest) -> None:
     if not rung:
         return
-    if _all_int(a, b):
+    if isinstance(a, int) and isinstance(b, int):
         m = (1 << _carry_bits(dest)) - 1
         store(ctx, dest, a - b, carry=(a & m) < (b & m))  # borrow into the top bit
     else:

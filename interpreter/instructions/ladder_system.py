@@ -107,8 +107,9 @@ def _to_fields(us: int) -> list[int]:
 
 def _from_fields(words: list[int]) -> int | None:
     try:
-        t = datetime(*(int(w) for w in words[:6]), int(words[6]), tzinfo=UTC)  # type: ignore[misc]
-    except (ValueError, TypeError, IndexError, OverflowError):
+        y, mo, d, h, mi, s, us = (int(w) for w in words[:7])
+        t = datetime(y, mo, d, h, mi, s, us, tzinfo=UTC)
+    except (ValueError, TypeError, OverflowError):  # also fewer than 7 words
         return None  # not a valid date: the clock is left alone
     return (t - UNIX) // timedelta(microseconds=1)
 

@@ -8,6 +8,7 @@ from typing import Any
 
 from ..compiler.ladder_compiler import compile_ladder
 from ..compiler.st_compiler import RoutineCompiler, compile_routine
+from ..semantics.aoi import Aoi
 from ..semantics.checker import Checker
 from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
 from ..syntax import nodes as n
@@ -15,8 +16,10 @@ from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
 from ..vm.context import ExecContext, MajorFault
 from ..vm.values import string_text
+from .aoi import AoiRoutines, make_impls
 from .loader import Loaded
 from .storage import allocate
+from .tasks import Schedule
 
 DEFAULT_WATCHDOG = 5_000_000
 
@@ -59,28 +62,79 @@ class Controller:
         self.T = allocate(self.model)
         self.ctx = ExecContext(scan_period_ms=scan_period_ms, budget=watchdog, program=self.model)
         self.sites: list[tuple[str, n.Span]] = []
-        self.ns: dict[str, Any] = dict(HELPERS)
-        self.ns["_R"] = {}
-        self.routines: dict[str, Callable[..., None]] = {}
+        self.aoi_impls: dict[str, Callable[..., object]] = {}
+        self.aoi_prescans: dict[str, Callable[..., object]] = {}
+        self.ns = self._namespace()
         self.prescans: list[Callable[..., None]] = []
-        for i, r in enumerate(self.model.routines):
+        self._compile_aois()
+        if self.model.programs:
+            # One namespace per L5X program: JSR names resolve among that program's routines.
+            self.routines: dict[str, Callable[..., None]] = {}
+            mains: dict[str, Callable[..., None]] = {}
+            for key, info in self.model.programs.items():
+                ns = self._namespace()
+                own = [r for r in self.model.routines if (r.program_name or "").upper() == key]
+                compiled = self._compile_routines(own, ns, f"_{len(mains)}")
+                if info.main.upper() in compiled:
+                    mains[key] = compiled[info.main.upper()]
+            self.schedule = Schedule.for_project(self.model, mains)
+        else:
+            self.routines = self._compile_routines(self.model.routines, self.ns, "")
+            self.schedule = Schedule.single(self.routines[self.model.main.upper()])
+        self.scans = 0
+        self.major_fault: Fault | None = None
+
+    def _namespace(self) -> dict[str, Any]:
+        ns: dict[str, Any] = dict(HELPERS)
+        ns["_R"] = {}
+        ns["_AOI"] = self.aoi_impls
+        ns["_AOI_PRE"] = self.aoi_prescans
+        return ns
+
+    def _compile_routines(self, routines: list[n.Routine], ns: dict[str, Any], tag: str) -> dict[str, Callable[..., None]]:
+        compiled: dict[str, Callable[..., None]] = {}
+        for i, r in enumerate(routines):
             if r.language == "st":
                 code = compile_routine(self.model, self.analysis, r, self.sites)
             elif r.language == "rll":
                 code = compile_ladder(self.model, self.analysis, r, self.sites)
             else:
                 continue
-            self.routines[r.name.upper()] = self._translate(code, code.ops, f"_routine{i}")
-            self.prescans.append(self._translate(code, code.prescan, f"_prescan{i}"))
-        self.ns["_R"].update(self.routines)
-        self.main = self.routines[self.model.main.upper()]
-        self.scans = 0
-        self.major_fault: Fault | None = None
+            compiled[r.name.upper()] = self._translate(code, code.ops, f"_routine{tag}_{i}", ns)
+            self.prescans.append(self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns))
+        ns["_R"].update(compiled)
+        return compiled
 
-    def _translate(self, code: Any, ops: list, name: str) -> Callable[..., None]:
-        src = Translator(code, self.ns, name, ops).translate()
-        exec(compile(src, f"<logix {code.path}:{name}>", "exec"), self.ns)  # noqa: S102
-        return self.ns[name]  # type: ignore[no-any-return]
+    def _compile_aois(self) -> None:
+        """Implementations first (calls may nest), then each definition's routines once."""
+        done: list[tuple[Aoi, AoiRoutines]] = []
+        for aoi in self.model.aois.values():
+            assert isinstance(aoi, Aoi) and aoi.instruction is not None
+            routines = AoiRoutines()
+            call, pre = make_impls(aoi, routines)
+            self.aoi_impls[aoi.instruction.key] = call
+            self.aoi_prescans[aoi.instruction.key] = pre
+            done.append((aoi, routines))
+        for k, (aoi, routines) in enumerate(done):
+            for name, r in aoi.routines.items():
+                if name not in ("LOGIC", "ENABLEINFALSE"):
+                    continue
+                if r.language == "rll":
+                    code = compile_ladder(self.model, self.analysis, r, self.sites)
+                else:
+                    code = compile_routine(self.model, self.analysis, r, self.sites)
+                fn = self._translate(code, code.ops, f"_aoi{k}_{name.lower()}", self.ns)
+                if name == "LOGIC":
+                    routines.logic = fn
+                    routines.logic_prescan = self._translate(code, code.prescan, f"_aoi{k}_prescan", self.ns)
+                else:
+                    routines.enable_in_false = fn
+
+    def _translate(self, code: Any, ops: list, name: str, ns: dict[str, Any] | None = None) -> Callable[..., None]:
+        ns = self.ns if ns is None else ns
+        src = Translator(code, ns, name, ops).translate()
+        exec(compile(src, f"<logix {code.path}:{name}>", "exec"), ns)  # noqa: S102
+        return ns[name]  # type: ignore[no-any-return]
 
     # ------------------------------------------------------------ running
     def prescan(self) -> bool:
@@ -103,7 +157,7 @@ class Controller:
         if ctx.motion is not None:
             ctx.motion.before_scan(ctx.now_ms)
         try:
-            self.main(self.T, ctx)
+            self.schedule.run(self.T, ctx)
         except MajorFault as f:
             self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
             return False
@@ -115,7 +169,14 @@ class Controller:
         return True
 
     def _fault(self, type_: int, code: int, major: bool, message: str, site: int, count: int = 1) -> Fault:
-        path, span = self.sites[site] if 0 <= site < len(self.sites) else (self.model.routines[0].path, n.Span(1, 1, 1, 1))
+        if 0 <= site < len(self.sites):
+            path, span = self.sites[site]
+        else:
+            path, span = (self.model.routines[0].path if self.model.routines else self.model.name), n.Span(1, 1, 1, 1)
+        project = self.model.extra.get("l5x")
+        where = project.context.get(span.line) if project is not None and path == project.path else None  # type: ignore[attr-defined]
+        if where:
+            message = f"{message} ({where})"
         return Fault(type_, code, major, message, path, span.line, span.col, count)
 
     def faults(self) -> list[Fault]:
@@ -137,6 +198,7 @@ class Controller:
             raise WatchError(str(exc)) from None
         if not isinstance(expr, n.Name | n.Member | n.Index | n.Bit | n.IndirectBit):
             raise WatchError(f"'{text}' is not a tag reference")
+        expr = _qualify(expr)
         checker = Checker(self.model)
         checker.a = self.analysis
         before = len(self.analysis.diags)
@@ -175,6 +237,19 @@ class Controller:
             self.ns[sname](self.T, self.ctx)
 
         return (lambda: fn(self.T, self.ctx)), t, setter
+
+
+def _qualify(e: n.Expr) -> n.Expr:
+    """`Program:Main.Tag...` parses as member Tag of `Program:Main`: make the root one name."""
+    if isinstance(e, n.Member) and isinstance(e.base, n.Name) and e.base.ident.upper().startswith("PROGRAM:"):
+        return n.Name(f"{e.base.ident}.{e.name}", e.span)
+    for attr in ("base",):
+        inner = getattr(e, attr, None)
+        if inner is not None:
+            q = _qualify(inner)
+            if q is not inner:
+                setattr(e, attr, q)
+    return e
 
 
 def _check_settable(text: str, value: object, t: Elementary) -> None:

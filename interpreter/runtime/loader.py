@@ -11,7 +11,10 @@ from pathlib import Path
 from ..diagnostics import Diagnostic
 from ..semantics.checker import Analysis, check_program
 from ..semantics.program import ProgramModel, build_program
+from ..semantics.project import build_project, controller_scope
+from ..semantics.types import TypeTable
 from ..syntax import nodes as n
+from ..syntax.l5x import L5XProject, read_l5x
 from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
 
@@ -37,7 +40,8 @@ def _require_file(path: Path) -> None:
         raise InputError(f"{path}: is a directory, expected a .st or .rll file")
 
 
-def read_text(path: Path) -> str:
+def read_bytes(path: Path) -> bytes:
+    """The file's bytes after the checks every input gets (exists, size, not empty, text)."""
     _require_file(path)
     try:
         size = path.stat().st_size
@@ -50,12 +54,21 @@ def read_text(path: Path) -> str:
         raise InputError(f"{path}: file is empty")
     if b"\x00" in data[:8192]:
         raise InputError(f"{path}: looks like a binary file, not Logix source text")
+    return data
+
+
+def read_text(path: Path) -> str:
+    data = read_bytes(path)
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError:
         return data.decode("latin-1")
+
+
+def is_project(path: Path) -> bool:
+    return path.suffix.lower() == ".l5x"
 
 
 def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
@@ -68,6 +81,22 @@ def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
         routine, diags = parse_rll(read_text(path), str(path))
         return [routine], diags
     raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})")
+
+
+def read_project(path: Path) -> tuple[L5XProject | None, list[Diagnostic]]:
+    return read_l5x(read_bytes(path), str(path))
+
+
+def load_project(path: Path) -> Loaded:
+    """One .L5X export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
+    project, diags = read_project(path)
+    if project is None:
+        return Loaded(ProgramModel(path.stem, [], TypeTable()), Analysis(), diags)
+    model, mdiags = build_project(project)
+    analysis = check_program(model)
+    diags = diags + mdiags + [project.annotate(d) for d in analysis.diags]
+    diags.sort(key=lambda d: d.sort_key())
+    return Loaded(model, analysis, diags)
 
 
 @contextmanager
@@ -87,22 +116,43 @@ def gc_paused() -> Iterator[None]:
             gc.enable()
 
 
-def load(paths: list[Path]) -> Loaded:
-    """Parse and verify the files of one program (SPEC 2.4): routine name = file stem."""
+def load(paths: list[Path], tags: Path | None = None) -> Loaded:
+    """Parse and verify the files of one program (SPEC 2.4): routine name = file stem.
+
+    `tags` is an .L5X export whose data types and controller tags the files use (SPEC 9.16).
+    """
     if not paths:
         raise InputError("no program file given")
+    if any(is_project(p) for p in paths):
+        if len(paths) > 1:
+            raise InputError("an .L5X file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)")
+        if tags is not None:
+            raise InputError("--tags gives controller tags to .st/.rll files; an .L5X project has its own")
+        with gc_paused():
+            return load_project(paths[0])
     with gc_paused():
-        return _load(paths)
+        return _load(paths, tags)
 
 
-def _load(paths: list[Path]) -> Loaded:
+def _load(paths: list[Path], tags: Path | None) -> Loaded:
     routines: list[n.Routine] = []
     diags: list[Diagnostic] = []
     for p in paths:
         rs, ds = parse_file(p)
         routines.extend(rs)
         diags.extend(ds)
-    model, mdiags = build_program(routines[0].program_name or routines[0].name, routines)
+    types: TypeTable | None = None
+    shared: tuple[list[n.VarDecl], str] | None = None
+    if tags is not None:
+        if not is_project(tags):
+            raise InputError(f"{tags}: --tags expects an .L5X export")
+        project, tdiags = read_project(tags)
+        diags.extend(tdiags)
+        if project is not None:
+            types, decls, cdiags = controller_scope(project)
+            diags.extend(cdiags)
+            shared = (decls, str(tags))
+    model, mdiags = build_program(routines[0].program_name or routines[0].name, routines, types, shared)
     diags.extend(mdiags)
     analysis = check_program(model)
     diags.extend(analysis.diags)

@@ -14,6 +14,7 @@ from stdlib import Instruction, Operand, catalog
 from ..diagnostics import Diagnostic, diag
 from ..instructions.registry import LOWERED
 from ..syntax import nodes as n
+from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
 from .program import ProgramModel, Tag, const_number
 from .types import (
@@ -99,18 +100,58 @@ class Checker(LadderChecks):
         self.guard_depth = 0
         self.for_vars: list[str] = []
         self.motion_uses: dict[str, int] = {}
+        self.scope: str | None = None  # the L5X program whose routine is being checked
+        self.aoi: Aoi | None = None  # the add-on instruction whose routine is being checked
+
+    def lookup(self, name: str) -> Tag | None:
+        """A tag visible here: AOI parameters and locals inside an AOI, else program then controller."""
+        if self.aoi is not None:
+            return self.aoi.tags.get(name.upper())
+        return self.model.tag(name, self.scope)
+
+    def find_instruction(self, name: str) -> Instruction | None:
+        """A project's add-on instruction, else the catalog instruction of this language."""
+        aoi = self.model.aois.get(name.upper())
+        if aoi is not None:
+            return aoi.instruction  # type: ignore[attr-defined, no-any-return]
+        return self.cat.instruction(name, self.language)
 
     # ------------------------------------------------------------ entry
     def run(self) -> Analysis:
+        projects = bool(self.model.programs)
         for r in self.model.routines:
-            self.path = r.path
-            self.language = r.language
-            self.check_initialisers(r)
-            if r.language == "st":
-                self.stmts(r.body)
-            elif r.language == "rll":
-                self.rungs(r.rungs)
+            self.routine(r, r.program_name if projects else None)
+        for aoi in self.model.aois.values():
+            self.aoi = aoi  # type: ignore[assignment]
+            for r in aoi.routines.values():  # type: ignore[attr-defined]
+                self.routine(r, None)
+            self.aoi = None
+        if "l5x" in self.model.extra or "tag_data" in self.model.extra:
+            self.check_tag_data()
         return self.a
+
+    def routine(self, r: n.Routine, scope: str | None) -> None:
+        self.path = r.path
+        self.language = r.language
+        self.scope = scope
+        self.check_initialisers(r)
+        if r.language == "st":
+            self.stmts(r.body)
+        elif r.language == "rll":
+            self.rungs(r.rungs)
+
+    def check_tag_data(self) -> None:
+        """L5X tags (and AOI parameter defaults): exported data must fit the declared type."""
+        source = self.model.extra.get("tag_data")  # --tags: only the tags that came from it
+        tags = [t for t in self.model.tags.values() if source is None or t.init_path == source]
+        for aoi in self.model.aois.values():
+            tags.extend(aoi.tags.values())  # type: ignore[attr-defined]
+        for tag in tags:
+            if tag.init is not None and tag.alias_of is None:
+                self.path = tag.init_path or tag.path
+                self.scope = tag.program
+                self.check_init(tag.init, tag.type)
+        self.scope = None
 
     def err(self, code: str, msg: str, span: n.Span) -> None:
         self.a.diags.append(diag(code, msg, self.path, span))
@@ -121,7 +162,7 @@ class Checker(LadderChecks):
             if d.init is None:
                 continue
             for name, _ in d.names:
-                tag = self.model.tag(name)
+                tag = self.lookup(name)
                 if tag is not None and tag.init_path == r.path:
                     self.check_init(d.init, tag.type)
                     break
@@ -150,7 +191,7 @@ class Checker(LadderChecks):
                 mt = m[1]
                 if isinstance(value, n.ArrayInit) and isinstance(mt, ArrayType) and is_axis(mt.elem):
                     for item in value.items:
-                        tag = self.model.tag(item.ident) if isinstance(item, n.Name) else None
+                        tag = self.lookup(item.ident) if isinstance(item, n.Name) else None
                         if tag is None or not is_axis(tag.type):
                             self.err("E118", "Axes must name axis tags of this program", _init_span(item))
                     if not 2 <= len(value.items) <= 3:
@@ -294,7 +335,7 @@ class Checker(LadderChecks):
 
     # ------------------------------------------------------------ calls
     def call_stmt(self, c: n.Call) -> None:
-        tag = self.model.tag(c.name)
+        tag = self.lookup(c.name)
         if tag is not None and isinstance(tag.type, StructType):
             ins = self.cat.instruction(tag.type.name, "st")
             if ins is not None:
@@ -311,7 +352,7 @@ class Checker(LadderChecks):
         args: list[n.Expr], named: n.Arg | None,
     ) -> None:
         """An instruction call, ST statement or ladder element alike: catalog entry and operands."""
-        ins = self.cat.instruction(name, self.language)
+        ins = self.find_instruction(name)
         if ins is None:
             other = self.cat.instruction_any(name)
             if other is not None:
@@ -330,6 +371,8 @@ class Checker(LadderChecks):
             self.err("E130", "named parameters are only for function block instances", named.span)
         else:
             self.operands(ins, args, span)
+            if ins.family == "aoi":
+                self.aoi_arguments(name, args)
         self.require_implementation(ins, name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
@@ -368,11 +411,19 @@ class Checker(LadderChecks):
         self.a.fb_of[id(c)] = fb
         self.require_implementation(ins, c.name_span)
 
+    def aoi_arguments(self, name: str, args: list[n.Expr]) -> None:
+        """InOut arguments are passed by reference: they need the parameter's exact type."""
+        aoi = self.model.aois[name.upper()]
+        for p, e in zip(aoi.required, args[1:], strict=False):  # type: ignore[attr-defined]
+            t = self.a.type_of.get(id(e))
+            if p.usage == "InOut" and t is not None and not same_shape(t, p.type):
+                self.err("E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span)  # type: ignore[attr-defined]
+
     def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
         from ..instructions.registry import lookup
 
         language = language or self.language
-        if ins.name in LOWERED:  # compiled inline, in ST (JSR SBR RET TND) and ladder alike
+        if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
             return
         if lookup(ins.name, language) is None:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
@@ -427,13 +478,13 @@ class Checker(LadderChecks):
         if op.format == "routine":
             if not isinstance(e, n.Name):
                 self.err("E124", "JSR needs a routine name", e.span)
-            elif self.model.routine(e.ident) is None:
-                names = [r.name for r in self.model.routines]
+            elif self.model.routine(e.ident, self.scope) is None:
+                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
                 self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
             return
         if op.format == "label":
             return
-        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.model.tag(e.ident) is None:
+        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
             self.a.type_of[id(e)] = DINT
             return
@@ -491,7 +542,7 @@ class Checker(LadderChecks):
         en = self.cat.enum(op.enum)
         text = _enum_text(e)
         if text is not None:
-            if isinstance(e, n.Name) and self.model.tag(e.ident) is not None and en.lookup(text) is None:
+            if isinstance(e, n.Name) and self.lookup(e.ident) is not None and en.lookup(text) is None:
                 return False  # a tag, checked as a value below
             v = en.lookup(text)
             if v is None:
@@ -620,9 +671,10 @@ class Checker(LadderChecks):
                 return None
             self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
             return BOOL
-        tag = self.model.tag(e.ident)
+        tag = self.lookup(e.ident)
         if tag is None:
-            names = [t.name for t in self.model.tags.values()]
+            pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
+            names = [t.name for t in pool]
             self.err("E101", f"undefined tag '{e.ident}'{self.suggest(e.ident, names)}", e.span)
             return None
         self.a.tag_of[id(e)] = tag

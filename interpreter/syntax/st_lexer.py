@@ -80,18 +80,27 @@ class StLexer(Lexer):
     def lex(self, lexer_state: LexerState, parser_state: Any) -> Iterator[Token]:
         src = lexer_state.text
         text: str = src if isinstance(src, str) else src.text
-        if parser_state is None:
-            return self.tokens(text, getattr(src, "start", 0), getattr(src, "end", len(text)), None)
-        states = parser_state.parse_conf.parse_table.states
-        return self.tokens(
-            text, getattr(src, "start", 0), getattr(src, "end", len(text)),
-            lambda: states[parser_state.position], parser_state,
-        )
+        # lark calls lex() again after an error handler resumes the parse: continue where
+        # the line counter stands, and keep it current, as lark's own lexers do.
+        ctr = lexer_state.line_ctr
+        end = getattr(src, "end", len(text))
+        accepts = None
+        if parser_state is not None:
+            states = parser_state.parse_conf.parse_table.states
+            accepts = lambda: states[parser_state.position]  # noqa: E731
+        for tok in self.tokens(text, max(ctr.char_pos, getattr(src, "start", 0)), end, accepts, parser_state, ctr):
+            lexer_state.last_token = tok
+            yield tok
+        ctr.char_pos = end
 
     def tokens(
         self, text: str, pos: int, end: int, accepts: Callable[[], Any] | None, parser_state: Any = None,
+        counter: Any = None,
     ) -> Iterator[Token]:
-        """Tokens of text[pos:end]; `accepts()` gives the terminals the parser accepts now."""
+        """Tokens of text[pos:end]; `accepts()` gives the terminals the parser accepts now.
+
+        `counter` (lark's LineCounter) is kept at the end of the last token when given.
+        """
         keywords, hard, ops = self.keywords, self.hard, self.ops
         match = self.master.match
         line = 1 + text.count("\n", 0, pos)
@@ -149,6 +158,9 @@ class StLexer(Lexer):
             tok = Token(ttype, value, start, line, col, line, col + (stop - start), stop)
             last = tok
             pos = stop
+            if counter is not None:
+                counter.char_pos, counter.line, counter.line_start_pos = stop, line, line_start
+                counter.column = stop - line_start + 1
             yield tok
 
     @staticmethod

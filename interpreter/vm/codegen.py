@@ -465,6 +465,9 @@ class Translator:
             raise AssertionError(op)
 
     def impl(self, key: str, prescan: bool = False) -> str:
+        project = self.ns.get("_AOI_PRE" if prescan else "_AOI")  # a project's add-on instructions
+        if project is not None and key in project:
+            return self.const_name(project[key])
         name, _, langs = key.partition("@")
         lang = self.code.language if self.code.language in langs.split("+") else langs.split("+")[0]
         fn = lookup_prescan(name, lang) if prescan else lookup(name, lang)

@@ -76,3 +76,10 @@ def test_errors_take_the_slow_path_with_recovery(bad: str) -> None:
         fast_parse(_parser(), bad, "start")
     _, diags = parse_st(bad, "bad.st")
     assert diags and all(d.code.startswith("S") for d in diags)
+
+
+def test_recovery_resumes_after_the_error_not_at_the_start() -> None:
+    # lark calls the lexer again after an error handler inserts the missing ';': lexing must
+    # continue after END_VAR's position, so exactly one S005 and nothing else is reported.
+    _, diags = parse_st("VAR\n  a : DINT\nEND_VAR\na := 1;\nb := a\n;", "semi.st")
+    assert [(d.code, d.span.line) for d in diags] == [("S005", 3)]
