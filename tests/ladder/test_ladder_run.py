@@ -452,3 +452,23 @@ def test_subscript_fault_points_at_the_instruction(st: Runner) -> None:
     # the second faults 4/20 at its mnemonic: line 3, column 11
     assert r.code == 3
     assert [(f["type"], f["code"], f["line"], f["column"]) for f in r.json["faults"]] == [(4, 20, 3, 11)]
+
+
+def test_conveyor_sample_runs_as_its_comment_says(st: Runner) -> None:
+    import numpy as np
+
+    sample = Path(__file__).resolve().parents[2] / "samples" / "conveyor.rll"
+    r = st.cli("run", str(sample), "--duration", "6", "--set", "StartPB=1", "--json",
+               "--watch", "Motor", "--watch", "BoxCount.ACC", "--watch", "BatchDone", "--watch", "BeltMeters")
+    assert r.code == 0, r.err
+    # StartDelay (2000 ms) is done in scan 2000, so Motor is on from scan 2000. BoxGap starts
+    # there: the eye covers at ACC = 400 (scan 2400); DN at 500 (scan 2500); the next scan's
+    # XIO(DN) resets it and the one after restarts it, so a cycle takes 502 scans. Box 5 is
+    # counted in scan 2400 + 4 * 502 = 4408 (BatchDone); Run and Motor drop in scan 4409.
+    # BeltMeters adds float32(30 / 60000) in float32 in scans 2000..4408: 2409 times.
+    step, meters = np.float32(30.0) / np.float32(60000.0), np.float32(0.0)
+    for _ in range(2409):
+        meters = np.float32(meters + step)
+    t = r.tags
+    assert (t["Motor"], t["BoxCount.ACC"], t["BatchDone"]) == (False, 5, True)
+    assert t["BeltMeters"] == float(meters)
