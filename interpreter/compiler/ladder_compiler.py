@@ -15,6 +15,7 @@ from stdlib import Instruction, catalog
 
 from ..instructions.registry import LOWERED, lookup_prescan
 from ..semantics.checker import Analysis
+from ..semantics.ladder_check import rung_instructions
 from ..semantics.program import ProgramModel, const_number
 from ..semantics.types import BOOL, DINT, LREAL, Elementary, StructType, promote
 from ..syntax import nodes as n
@@ -38,15 +39,6 @@ class _Jumps:
     back: int = -1
 
 
-def _instructions(elements: list[n.LadderElement]):  # type: ignore[no-untyped-def]
-    for el in elements:
-        if isinstance(el, n.Branch):
-            for leg in el.legs:
-                yield from _instructions(leg)
-        else:
-            yield el
-
-
 def _label(e: n.Expr | None) -> str:
     return e.ident.upper() if isinstance(e, n.Name) else ""
 
@@ -66,7 +58,7 @@ class LadderCompiler(RoutineCompiler):
     # ------------------------------------------------------------ routine
     def compile(self) -> Code:
         rungs = self.r.rungs
-        if any(i.name.upper() == "MCR" for r in rungs for i in _instructions(r.elements)):
+        if any(i.name.upper() == "MCR" for r in rungs for i in rung_instructions(r.elements)):
             self.mcr = self.temp()
             self.emit(Op.CONST, (1, BOOL))
             self.emit(Op.TSET, self.mcr)
@@ -110,7 +102,7 @@ class LadderCompiler(RoutineCompiler):
         seg = 0
         targets: list[tuple[int, str]] = []
         for i, rung in enumerate(rungs):
-            for k, ins in enumerate(_instructions(rung.elements)):
+            for k, ins in enumerate(rung_instructions(rung.elements)):
                 name = ins.name.upper()
                 if name == "LBL" and ins.operands:
                     if k == 0 and i > 0:
@@ -127,11 +119,11 @@ class LadderCompiler(RoutineCompiler):
         return j
 
     def rung(self, rung: n.Rung) -> None:
-        count = sum(1 for _ in _instructions(rung.elements))
+        count = sum(1 for _ in rung_instructions(rung.elements))
         if not count:
             return
         self.emit(Op.STEP, (count, False))  # SPEC 9.4: one step per ladder instruction
-        has_mcr = any(i.name.upper() == "MCR" for i in _instructions(rung.elements))
+        has_mcr = any(i.name.upper() == "MCR" for i in rung_instructions(rung.elements))
         if self.mcr is not None and not has_mcr:
             self.emit(Op.TGET, (self.mcr, BOOL))  # inside a false MCR zone every rung starts false
         else:
@@ -487,7 +479,7 @@ class LadderCompiler(RoutineCompiler):
         main_ops = self.ops
         self.ops = self.code.prescan
         for rung in rungs:
-            for ins in _instructions(rung.elements):
+            for ins in rung_instructions(rung.elements):
                 cat = self.catalog_entry(ins)
                 if cat is None:
                     continue

@@ -472,3 +472,17 @@ def test_conveyor_sample_runs_as_its_comment_says(st: Runner) -> None:
     t = r.tags
     assert (t["Motor"], t["BoxCount.ACC"], t["BatchDone"]) == (False, 5, True)
     assert t["BeltMeters"] == float(meters)
+
+
+@pytest.mark.parametrize(
+    ("rungs", "message", "line"),
+    [
+        ("XIC(a)JMP(nowhere);\nLBL(here)NOP();\n", "no LBL(nowhere) in this routine (labels here: HERE)", 2),
+        ("LBL(x)NOP();\nLBL(x)NOP();\n", "label 'x' is already defined on rung 0", 3),
+        ("XIC(a)LBL(x)NOP();\nJMP(x);\n", "LBL(x) must be the first instruction of its rung", 2),
+    ],
+)
+def test_label_errors_are_reported_before_running(st: Runner, rungs: str, message: str, line: int) -> None:
+    r = st.run("VAR a : BOOL; END_VAR\n" + rungs, name="main.rll")
+    assert r.code == 1
+    assert [(d["code"], d["message"], d["line"]) for d in r.json["diagnostics"]] == [("E131", message, line)]
