@@ -262,8 +262,7 @@ class RoutineCompiler:
             for e in args:
                 t = self.type_of(e)
                 self.value(e, t)
-            if args:
-                self.emit(Op.SETRV, len(args))
+            self.emit(Op.SETRV, len(args))  # RET() hands back no values: a JSR expecting some faults
             self.emit(Op.RETURN)
         elif name == "TND":
             self.emit(Op.RETURN)

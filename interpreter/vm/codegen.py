@@ -118,6 +118,7 @@ HELPERS: dict[str, Any] = {
 }
 
 _TRUE = ("1", "True")
+_MAX_DEPTH = 40  # CPython's parser refuses about 200 nested parentheses
 _FALSE = ("0", "False")
 
 
@@ -126,6 +127,8 @@ _FALSE = ("0", "False")
 class _Val:
     expr: str
     type: DataType | None
+    chain: str = ""  # "and"/"or": expr is one flat parenthesised chain of that operator (LAND/LOR)
+    depth: int = 0  # parentheses nesting added by LAND/LOR (kept below Python's parser limit)
 
 
 @dataclass(slots=True)
@@ -415,8 +418,13 @@ class Translator:
         if op is Op.POP:
             st.pop()
         elif op is Op.LAND or op is Op.LOR:
-            b, a = self.pop_val().expr, self.pop_val().expr
-            st.append(_Val(_rung_logic(a, b, op is Op.LAND), BOOL))
+            b, a = self.pop_val(), self.pop_val()
+            v = _rung_logic(a, b, "and" if op is Op.LAND else "or")
+            if v.depth > _MAX_DEPTH:  # a very long or deep rung: evaluate the part so far now
+                t = self.fresh()
+                self.line(f"{t} = {v.expr}")
+                v = _Val(t, BOOL)
+            st.append(v)
         elif op is Op.RCALL:
             key, count = arg
             args = [self.pop_val().expr for _ in range(count)][::-1]
@@ -518,19 +526,16 @@ class Translator:
             st.append(_Val(f"_ipow(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
 
 
-def _rung_logic(a: str, b: str, conj: bool) -> str:
-    """`a AND b` / `a OR b` on rung conditions, folding the constant ends of a rung."""
-    if conj:
-        if a in _TRUE:
-            return b
-        if b in _TRUE or a in _FALSE:
-            return a
-        return f"({a} and {b})"
-    if a in _FALSE:
+def _rung_logic(a: _Val, b: _Val, word: str) -> _Val:
+    """`a AND b` / `a OR b` on rung conditions: constant ends folded, chains kept flat."""
+    absorbing, neutral = (_FALSE, _TRUE) if word == "and" else (_TRUE, _FALSE)
+    if a.expr in neutral:
         return b
-    if b in _FALSE or a in _TRUE:
-        return a
-    return f"({a} or {b})"
+    if b.expr in neutral or a.expr in absorbing:
+        return a  # b is pure: not evaluating it changes nothing
+    if a.chain == word:  # (x and y) and b -> (x and y and b)
+        return _Val(f"{a.expr[:-1]} {word} {b.expr})", BOOL, word, max(a.depth, b.depth + 1))
+    return _Val(f"({a.expr} {word} {b.expr})", BOOL, word, max(a.depth, b.depth) + 1)
 
 
 def _result_src(t: DataType) -> DataType:

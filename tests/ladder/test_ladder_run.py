@@ -486,3 +486,30 @@ def test_label_errors_are_reported_before_running(st: Runner, rungs: str, messag
     r = st.run("VAR a : BOOL; END_VAR\n" + rungs, name="main.rll")
     assert r.code == 1
     assert [(d["code"], d["message"], d["line"]) for d in r.json["diagnostics"]] == [("E131", message, line)]
+
+
+def test_very_long_and_deeply_nested_rungs_compile(st: Runner) -> None:
+    """Python refuses ~200 nested parentheses: long series and deep branches must still run."""
+    series = " ".join(f"XIO(a[{i % 300}])" for i in range(1000)) + " OTE(q1);"
+    # 150 nested branches, each [XIO(a[i]) [ ... ], XIC(a[i+1])]: all a are 0, so every XIO passes
+    nested = "".join(f"XIO(a[{i}])[XIC(a[{i + 1}])," for i in range(150)) + "NOP()" + "]" * 150 + " OTE(q2);"
+    outputs = "".join(f"XIO(a[{i}])[OTE(b[{i}]),XIC(a[{i}])" for i in range(150)) + "]" * 150 + " OTE(q3);"
+    src = "VAR a, b : BOOL[300]; q1, q2, q3 : BOOL; END_VAR\n" + "\n".join([series, nested, outputs]) + "\n"
+    t = tags(st, src, "q1", "q2", "q3", "b[0]", "b[1]", "b[149]")
+    # all a are 0: the XIO series passes (q1), the XIO path through the nested branches
+    # passes (q2). In the third rung level i is XIO(a[i]) [OTE(b[i]), XIC(a[i]) <level i+1>]:
+    # b[0] sees the true rung, every deeper level sits behind a false XIC(a[i]); the outer
+    # branch is true through its OTE leg (q3)
+    assert t == {"q1": True, "q2": True, "q3": True, "b[0]": True, "b[1]": False, "b[149]": False}
+
+
+def test_return_values_missing_or_mismatched(st: Runner) -> None:
+    main = st.write("main.rll", "VAR r : DINT := 5; sel : BOOL; END_VAR\nJSR(sub, 0, r);\n")
+    st.write("sub.rll", "XIC(sel) RET();\nNOP();\n")
+    # sel = 0: the subroutine ends without RET, the return parameter keeps its value
+    r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--watch", "r")
+    assert (r.code, r.tags) == (0, {"r": 5})
+    # sel = 1: RET() hands back no value where the JSR expects one: fault 4/31 at the JSR
+    r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--set", "sel=1", "--watch", "r")
+    assert r.code == 3
+    assert [(f["type"], f["code"], f["line"]) for f in r.json["faults"]] == [(4, 31, 2)]
