@@ -271,7 +271,7 @@ class RoutineCompiler:
     def jsr(self, args: list[n.Expr], span: n.Span) -> None:
         target = args[0]
         assert isinstance(target, n.Name)
-        routine = self.model.routine(target.ident)
+        routine = self.model.routine(target.ident, self.r.program_name)  # L5X: within the program
         assert routine is not None
         count = const_number(args[1]) if len(args) > 1 else 0
         count = count if isinstance(count, int) and count > 0 else 0
