@@ -513,3 +513,13 @@ def test_return_values_missing_or_mismatched(st: Runner) -> None:
     r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--set", "sel=1", "--watch", "r")
     assert r.code == 3
     assert [(f["type"], f["code"], f["line"]) for f in r.json["faults"]] == [(4, 31, 2)]
+
+
+def test_compares_on_strings(st: Runner) -> None:
+    src = """VAR s1 : STRING := 'abc'; s2 : STRING := 'abd'; lt, eq, ge : BOOL; END_VAR
+    LES(s1, s2) OTE(lt);
+    EQU(s1, s2) OTE(eq);
+    GEQ(s2, s1) OTE(ge);
+    """
+    # character codes in order: 'c' (99) < 'd' (100)
+    assert tags(st, src, "lt", "eq", "ge") == {"lt": True, "eq": False, "ge": True}
