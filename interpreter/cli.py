@@ -114,10 +114,9 @@ def cmd_run(args: argparse.Namespace) -> int:
             raise UsageError(f"--set {exc}") from None
     scans = args.scans if args.scans is not None else round((1.0 if args.duration is None else args.duration) * 1000.0 / args.scan_period)
     trace_rows: list[list[object]] = []
-    ctl.prescan()
+    ok = ctl.prescan()
     progress = _Progress(scans, enabled=sys.stderr.isatty() and not args.json)
-    ok = True
-    for k in range(scans):
+    for k in range(scans if ok else 0):
         ok = ctl.scan()
         if args.trace is not None:
             trace_rows.append([k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches])

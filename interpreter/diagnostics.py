@@ -65,6 +65,7 @@ _TABLE: list[tuple[str, str]] = [
     ("E128", "'?' placeholder where a value is required"),
     ("E129", "empty rung"),
     ("E130", "named parameters are only for function blocks"),
+    ("E131", "ladder label missing, repeated or misplaced"),
     # warnings
     ("W201", "FOR index assigned in the loop body"),
     ("W202", "shorted ladder branch"),

@@ -35,12 +35,22 @@ def test_every_type_and_enum_is_documented() -> None:
         assert en.values, f"enum {en.name} has no values"
 
 
-# Lowered by the compilers to opcodes rather than dispatched to an implementation: JSR, and
-# the ladder contacts, coils, comparisons, MOV, program control and expression instructions.
+# Lowered by the compilers to inline bytecode rather than dispatched to an implementation
+# (ladder contacts, coils, compares, moves, expressions, file loops and program control).
 INTRINSICS = {
-    "JSR", "SBR", "RET", "TND", "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ",
-    "LES", "LEQ", "MOV", "JMP", "LBL", "MCR", "AFI", "NOP", "CPT", "CMP", "FAL", "FSC",
+    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
+    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
 }
+
+
+def test_intrinsics_are_the_compiler_lowered_set_and_have_no_implementation() -> None:
+    from interpreter.instructions.registry import LOWERED
+
+    assert INTRINSICS == LOWERED
+    for name in INTRINSICS:
+        ins = catalog().instruction(name, "rll")
+        assert ins is not None, name
+        assert lookup(name, "rll") is None, f"{name} is lowered: an implementation would never run"
 
 
 @pytest.mark.parametrize(

@@ -18,6 +18,13 @@ from typing import Any
 
 Impl = Callable[..., Any]
 
+# Instructions the compilers lower to bytecode themselves: they have no implementation
+# function (ladder contacts and coils, compares, MOV, CPT, CMP, FAL, FSC, program control).
+LOWERED = frozenset({
+    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
+    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
+})
+
 IMPLEMENTATIONS: dict[str, Impl] = {}
 PRESCANS: dict[str, Impl] = {}
 _LOADED = False

@@ -6,6 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..compiler.ladder_compiler import compile_ladder
 from ..compiler.st_compiler import RoutineCompiler, compile_routine
 from ..semantics.aoi import Aoi
 from ..semantics.checker import Checker
@@ -16,7 +17,7 @@ from ..vm.codegen import HELPERS, Translator
 from ..vm.context import ExecContext, MajorFault
 from ..vm.values import string_text
 from .aoi import AoiRoutines, make_impls
-from .loader import InputError, Loaded
+from .loader import Loaded
 from .storage import allocate
 from .tasks import Schedule
 
@@ -93,10 +94,12 @@ class Controller:
     def _compile_routines(self, routines: list[n.Routine], ns: dict[str, Any], tag: str) -> dict[str, Callable[..., None]]:
         compiled: dict[str, Callable[..., None]] = {}
         for i, r in enumerate(routines):
-            if r.language != "st":
-                # Ladder is verified but not compiled yet (the ladder compiler is issue 3).
-                raise InputError(f"{r.path}: ladder routines are checked but cannot run in this version")
-            code = compile_routine(self.model, self.analysis, r, self.sites)
+            if r.language == "st":
+                code = compile_routine(self.model, self.analysis, r, self.sites)
+            elif r.language == "rll":
+                code = compile_ladder(self.model, self.analysis, r, self.sites)
+            else:
+                continue
             compiled[r.name.upper()] = self._translate(code, code.ops, f"_routine{tag}_{i}", ns)
             self.prescans.append(self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns))
         ns["_R"].update(compiled)
@@ -116,9 +119,10 @@ class Controller:
             for name, r in aoi.routines.items():
                 if name not in ("LOGIC", "ENABLEINFALSE"):
                     continue
-                if r.language != "st":
-                    raise InputError(f"{r.path}: ladder routines are checked but cannot run in this version")
-                code = compile_routine(self.model, self.analysis, r, self.sites)
+                if r.language == "rll":
+                    code = compile_ladder(self.model, self.analysis, r, self.sites)
+                else:
+                    code = compile_routine(self.model, self.analysis, r, self.sites)
                 fn = self._translate(code, code.ops, f"_aoi{k}_{name.lower()}", self.ns)
                 if name == "LOGIC":
                     routines.logic = fn
@@ -133,10 +137,16 @@ class Controller:
         return ns[name]  # type: ignore[no-any-return]
 
     # ------------------------------------------------------------ running
-    def prescan(self) -> None:
+    def prescan(self) -> bool:
+        """Prescan every routine once (SPEC 3.2); False when it major-faulted (a bad subscript)."""
         self.ctx.steps = 0
-        for p in self.prescans:
-            p(self.T, self.ctx)
+        try:
+            for p in self.prescans:
+                p(self.T, self.ctx)
+        except MajorFault as f:
+            self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
+            return False
+        return True
 
     def scan(self) -> bool:
         """Run one normal scan; False when the controller major-faulted."""

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
+from ..instructions.registry import LOWERED
 from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
@@ -33,10 +34,6 @@ SYSTEM_FLAGS = {"S:FS": "FS", "S:N": "N", "S:Z": "Z", "S:V": "V", "S:C": "C", "S
 ST_SYSTEM_FLAGS = {"S:FS"}
 LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
 # Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
-LADDER_INTRINSICS = frozenset({
-    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
-    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
-})
 REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
 
 
@@ -426,7 +423,7 @@ class Checker(LadderChecks):
         from ..instructions.registry import lookup
 
         language = language or self.language
-        if ins.name == "JSR" or ins.family == "aoi" or (language == "rll" and ins.name in LADDER_INTRINSICS):
+        if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
             return
         if lookup(ins.name, language) is None:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
@@ -440,8 +437,15 @@ class Checker(LadderChecks):
             for e in args:
                 self.expr(e)
             return
+        inputs_end = len(ops)
+        if ins.name == "JSR" and len(args) > 1:  # JSR(Routine, n, n inputs..., returns...)
+            count = const_number(args[1])
+            inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
         for i, e in enumerate(args):
-            op = ops[i] if i < len(ops) else ops[-1]
+            if ins.name == "JSR" and i >= 2:
+                op = ops[2] if i < inputs_end else ops[3]
+            else:
+                op = ops[i] if i < len(ops) else ops[-1]
             self.operand(ins, op, e, i)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)

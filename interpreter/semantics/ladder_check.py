@@ -1,4 +1,4 @@
-"""Rung-level verification of ladder routines (SPEC 7): empty rungs and shorted branches.
+"""Rung-level verification of ladder routines (SPEC 7): empty rungs, shorted branches, labels.
 
 Each instruction on a rung is checked by the same code as an ST instruction call
 (Checker.instruction); this module only walks the rung structure. The rule for W202 is
@@ -31,6 +31,35 @@ class LadderChecks:
             if not rung.elements:
                 self.err("E129", f"rung {rung.number} is empty: give it at least one instruction (NOP)", rung.span)
             self.sequence(rung.elements, feeds=False)
+        self.labels(rungs)
+
+    def labels(self, rungs: list[n.Rung]) -> None:
+        """E131: every JMP names an LBL of the same routine; an LBL is unique and first on its rung
+        (the compiler cuts the routine into segments at those rungs, decision 0021)."""
+        defined: dict[str, int] = {}
+        jumps: list[tuple[str, n.Expr]] = []
+        for rung in rungs:
+            for k, ins in enumerate(rung_instructions(rung.elements)):
+                name = ins.name.upper()
+                if name not in ("LBL", "JMP") or len(ins.operands) != 1:
+                    continue
+                e = ins.operands[0]
+                if not isinstance(e, n.Name):
+                    self.err("E131", f"{name} needs a label name", e.span)
+                    continue
+                if name == "JMP":
+                    jumps.append((e.ident, e))
+                elif e.ident.upper() in defined:
+                    self.err("E131", f"label '{e.ident}' is already defined on rung {defined[e.ident.upper()]}", e.span)
+                else:
+                    if k != 0 or not isinstance(rung.elements[0], n.LadderInstr):
+                        self.err("E131", f"LBL({e.ident}) must be the first instruction of its rung", ins.span)
+                    defined[e.ident.upper()] = rung.number  # known either way: one error, not two
+        for label, e in jumps:
+            if label.upper() not in defined:
+                known = sorted(defined)
+                hint = f" (labels here: {', '.join(known)})" if known else ""
+                self.err("E131", f"no LBL({label}) in this routine{hint}", e.span)
 
     def sequence(self, elements: list[n.LadderElement], feeds: bool) -> bool:
         """Check elements in series (`feeds`: the rung goes on after the last of them).
@@ -72,3 +101,13 @@ class LadderChecks:
                 if ins is None or ins.input:
                     return True
         return False
+
+
+def rung_instructions(elements: list[n.LadderElement]):  # type: ignore[no-untyped-def]
+    """The rung's instructions in scan order, branch legs included."""
+    for e in elements:
+        if isinstance(e, n.Branch):
+            for leg in e.legs:
+                yield from rung_instructions(leg)
+        else:
+            yield e

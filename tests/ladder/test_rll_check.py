@@ -56,6 +56,7 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "E126": ("XIC(a)TONR(t);\n", "XIC(a)TON(t,100,0);\n"),
     "E128": ("XIC(a)MOV(?,x);\n", "XIC(a)TON(t,?,?);\n"),
     "E129": ("XIC(a)OTE(b);\n;\n", "XIC(a)OTE(b);\nNOP();\n"),
+    "E131": ("XIC(a)JMP(over);\nXIC(a)OTE(b);\nLBL(ovr)NOP();\n", "XIC(a)JMP(over);\nXIC(a)OTE(b);\nLBL(over)NOP();\n"),
     "W202": ("[XIC(a),]OTE(b);\n", "[XIC(a),XIC(c)]OTE(b);\n"),
     "W203": ("XIC(a)MSO(ax,mc);\nXIC(b)MSF(ax,mc);\n", "XIC(a)MSO(ax,mc);\nXIC(b)MSF(ax,mc2);\n"),
 }
@@ -97,7 +98,7 @@ def test_clean_twin(st, code: str) -> None:
 
 
 def test_every_ladder_code_has_a_fixture() -> None:
-    ladder = {"S006", "E128", "E129", "W202", "E124"}
+    ladder = {"S006", "E128", "E129", "E131", "W202", "E124"}
     assert ladder <= set(FIXTURES)
 
 
