@@ -14,8 +14,8 @@ from pathlib import Path
 from .diagnostics import Diagnostic, Severity, has_errors
 from .plot import PlotData, Series, require_matplotlib, write_plot
 from .runtime.controller import DEFAULT_WATCHDOG, Controller, WatchError, to_json_value
-from .runtime.loader import InputError, load
-from .semantics.types import Elementary, StructType
+from .runtime.loader import SUFFIXES, InputError, is_project, load
+from .semantics.types import DataType, Elementary, StructType
 from .syntax.literals import parse_number, parse_string
 
 EXIT_OK, EXIT_VERIFY, EXIT_USAGE, EXIT_FAULT = 0, 1, 2, 3
@@ -46,9 +46,11 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", type=Path, metavar="FILE.png", help="draw the traced signals (needs the plot extra)")
     run.add_argument("--json", action="store_true")
     run.add_argument("--watchdog", type=int, default=DEFAULT_WATCHDOG, metavar="N")
+    run.add_argument("--tags", type=Path, metavar="FILE.L5X", help="controller tags and data types for .st/.rll files")
     check = sub.add_parser("check", help="verify without running")
     check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
     check.add_argument("--format", choices=["text", "json", "github", "sarif"], default="text")
+    check.add_argument("--tags", type=Path, metavar="FILE.L5X", help="controller tags and data types for .st/.rll files")
     return p
 
 
@@ -101,7 +103,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         missing = require_matplotlib()
         if missing is not None:
             raise UsageError(missing)
-    loaded = load(args.programs)
+    loaded = load(args.programs, args.tags)
     if has_errors(loaded.diagnostics):
         _print_diags(loaded.diagnostics)
         if args.json:
@@ -124,10 +126,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     scans = args.scans if args.scans is not None else round((1.0 if args.duration is None else args.duration) * 1000.0 / args.scan_period)
     trace_rows: list[list[object]] = []
     record = args.trace is not None or args.plot is not None
-    ctl.prescan()
+    ok = ctl.prescan()
     progress = _Progress(scans, enabled=sys.stderr.isatty() and not args.json)
-    ok = True
-    for k in range(scans):
+    for k in range(scans if ok else 0):
         ok = ctl.scan()
         if record:
             trace_rows.append([k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches])
@@ -153,9 +154,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     return EXIT_OK if ok else EXIT_FAULT
 
 
-def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], object]]:
+def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:
     if not exprs:
-        exprs = [t.name for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
+        exprs = [t.qualified for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
     out = []
     for w in exprs:
         try:
@@ -186,7 +187,7 @@ def _write_trace(path: Path, names: list[str], rows: list[list[object]]) -> None
 
 
 def _write_plot(path: Path, ctl: Controller, programs: list[Path],
-                watches: list[tuple[str, Callable[[], object], object]], rows: list[list[object]]) -> None:
+                watches: list[tuple[str, Callable[[], object], DataType]], rows: list[list[object]]) -> None:
     series = []
     for j, (name, _, t) in enumerate(watches, start=1):
         if not isinstance(t, Elementary):
@@ -263,16 +264,19 @@ def cmd_check(args: argparse.Namespace) -> int:
         if not p.exists():
             raise InputError(f"{p}: no such file or directory")
         if p.is_dir():
-            members = sorted(x for x in p.iterdir() if x.suffix.lower() in (".st", ".rll"))
+            members = sorted(x for x in p.iterdir() if x.suffix.lower() in SUFFIXES)
             if members:
                 groups.append(members)
+            groups.extend([x] for x in sorted(p.iterdir()) if is_project(x))
+        elif is_project(p):
+            groups.append([p])  # each .L5X is one project (SPEC 9.8)
         else:
             files.append(p)
     if files:
         groups.insert(0, files)
     diags: list[Diagnostic] = []
     for g in groups:
-        diags.extend(load(g).diagnostics)
+        diags.extend(load(g, None if is_project(g[0]) else args.tags).diagnostics)
     diags.sort(key=lambda d: d.sort_key())
     _emit_check(diags, args.format)
     return EXIT_VERIFY if has_errors(diags) else EXIT_OK

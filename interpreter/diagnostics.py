@@ -65,6 +65,7 @@ _TABLE: list[tuple[str, str]] = [
     ("E128", "'?' placeholder where a value is required"),
     ("E129", "empty rung"),
     ("E130", "named parameters are only for function blocks"),
+    ("E131", "ladder label missing, repeated or misplaced"),
     # warnings
     ("W201", "FOR index assigned in the loop body"),
     ("W202", "shorted ladder branch"),
@@ -75,6 +76,7 @@ _TABLE: list[tuple[str, str]] = [
     ("U302", "protected (encoded) content not supported"),
     ("U303", "system attribute not simulated"),
     ("U304", "instruction recognised but not executable yet"),
+    ("U305", "alias tag not simulated"),
 ]
 
 _SEVERITY = {"S": Severity.ERROR, "E": Severity.ERROR, "W": Severity.WARNING, "U": Severity.ERROR}

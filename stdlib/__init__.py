@@ -38,6 +38,7 @@ class EnumValue:
 class Enumeration:
     name: str
     values: tuple[EnumValue, ...]
+    counts: bool = False  # any positive number is accepted too (FAL/FSC Mode: elements per scan)
 
     def lookup(self, text: str) -> EnumValue | None:
         key = enum_key(text)
@@ -63,6 +64,8 @@ class Operand:
     optional: bool = False
     doc: str = ""
     nullable: bool = False  # a literal 0 means "not used" (the implementation gets None)
+    placeholder: bool = False  # ladder may write `?` or leave it empty: the value lives in the tag
+    expression: bool = False  # takes an expression (CMP, CPT, FAL, FSC), not just a tag or literal
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,6 +79,7 @@ class Instruction:
     operands: tuple[Operand, ...]
     family: str
     variadic: bool = False
+    input: bool = False  # ladder input instruction: it can make the rung condition false
 
     @property
     def key(self) -> str:
@@ -153,6 +157,8 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
                 optional=bool(o.get("optional", False)),
                 doc=o.get("doc", ""),
                 nullable=bool(o.get("nullable", False)),
+                placeholder=bool(o.get("placeholder", False)),
+                expression=bool(o.get("expression", False)),
             )
         )
     return Instruction(
@@ -165,6 +171,7 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
         operands=tuple(ops),
         family=family,
         variadic=bool(raw.get("variadic", False)),
+        input=bool(raw.get("input", False)),
     )
 
 
@@ -186,7 +193,7 @@ def catalog() -> Catalog:
             values = tuple(
                 EnumValue(str(v["text"]), int(v["value"]), v.get("doc", "")) for v in e["values"]
             )
-            cat.enums[e["name"]] = Enumeration(e["name"], values)
+            cat.enums[e["name"]] = Enumeration(e["name"], values, bool(e.get("counts", False)))
         for raw in data.get("instruction", []):
             ins = _instruction(raw, path.stem, path.name)
             cat.instructions.append(ins)

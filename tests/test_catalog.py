@@ -1,7 +1,7 @@
 """The catalog is the single source of truth: every entry documented, every entry executable.
 
-Instructions that belong to open issues (ladder: issue 3, motion: issue 4) are listed in
-PENDING; the checker reports U304 for them instead of running them. The list may only shrink.
+Instructions that belong to open issues (motion: issue 4) are listed in PENDING; the checker
+reports U304 for them instead of running them. The list may only shrink.
 """
 
 from __future__ import annotations
@@ -12,16 +12,14 @@ from interpreter.instructions.registry import lookup
 from interpreter.semantics.types import TypeTable
 from stdlib import catalog
 
-# Ladder-only instructions are issue 3; output cams, coordinated motion and PLCopen come
-# after issue 4 (MSO MSF MAFR MAM MAJ MAS MGS MCCP MATC MDAC are implemented).
+# Output cams, coordinated motion and PLCopen come after issue 4 (MSO MSF MAFR MAM MAJ
+# MAS MGS MCCP MATC MDAC are implemented).
 PENDING_FAMILIES = {"plcopen": 4}
 PENDING_MOTION = {"MAOC", "MDOC", "MCCM", "MCLM", "MCS"}
 
 
 def _pending(ins) -> bool:  # type: ignore[no-untyped-def]
-    if ins.family in PENDING_FAMILIES or ins.name in PENDING_MOTION:
-        return True
-    return ins.languages == frozenset({"rll"}) or ins.name in {"GSV", "SSV", "SBR", "RET", "TND", "SRT"}
+    return ins.family in PENDING_FAMILIES or ins.name in PENDING_MOTION
 
 
 def test_every_instruction_has_docs() -> None:
@@ -39,8 +37,22 @@ def test_every_type_and_enum_is_documented() -> None:
         assert en.values, f"enum {en.name} has no values"
 
 
-# JSR is lowered by the compiler to the JSR opcode rather than dispatched to an implementation.
-INTRINSICS = {"JSR"}
+# Lowered by the compilers to inline bytecode rather than dispatched to an implementation
+# (ladder contacts, coils, compares, moves, expressions, file loops and program control).
+INTRINSICS = {
+    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
+    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
+}
+
+
+def test_intrinsics_are_the_compiler_lowered_set_and_have_no_implementation() -> None:
+    from interpreter.instructions.registry import LOWERED
+
+    assert INTRINSICS == LOWERED
+    for name in INTRINSICS:
+        ins = catalog().instruction(name, "rll")
+        assert ins is not None, name
+        assert lookup(name, "rll") is None, f"{name} is lowered: an implementation would never run"
 
 
 @pytest.mark.parametrize(

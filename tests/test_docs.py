@@ -1,7 +1,7 @@
 """docs/diagnostics.md and the diagnostic REGISTRY stay in step (SPEC 7, 9.10).
 
 Every registered code has exactly one section titled `## CODE title`, every section names
-a registered code, and each `st` example in a section really produces that section's code.
+a registered code, and each `st` or `rll` example in a section really produces that section's code.
 """
 
 from __future__ import annotations
@@ -48,19 +48,19 @@ def test_section_titles_follow_the_registry() -> None:
 def test_every_section_has_trigger_example_and_fix() -> None:
     for code, body in sections().items():
         assert "**Trigger.**" in body and "**Fix.**" in body, code
-        assert re.search(r"```(st|text)\n", body), f"{code} has no example"
+        assert re.search(r"```(st|rll|text)\n", body), f"{code} has no example"
 
 
-ST_EXAMPLES = [
-    (code, block)
+EXAMPLES = [
+    (code, lang, block)
     for code, body in sections().items()
-    for block in re.findall(r"```st\n(.*?)```", body, flags=re.S)
+    for lang, block in re.findall(r"```(st|rll)\n(.*?)```", body, flags=re.S)
 ]
 
 
-@pytest.mark.parametrize(("code", "source"), ST_EXAMPLES, ids=[c for c, _ in ST_EXAMPLES])
-def test_st_example_produces_its_code(tmp_path: Path, code: str, source: str) -> None:
-    p = tmp_path / "example.st"
+@pytest.mark.parametrize(("code", "lang", "source"), EXAMPLES, ids=[f"{c}-{lang}" for c, lang, _ in EXAMPLES])
+def test_example_produces_its_code(tmp_path: Path, code: str, lang: str, source: str) -> None:
+    p = tmp_path / f"example.{lang}"
     p.write_text(source)
     codes = [d.code for d in load([p]).diagnostics]
     assert code in codes, f"the {code} example gives {codes}"

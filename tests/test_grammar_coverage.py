@@ -1,4 +1,4 @@
-"""Grammar coverage: every rule and alias of st.lark is exercised and handled (DESIGN: tests).
+"""Grammar coverage: every rule and alias of st.lark and rll.lark is exercised and handled (DESIGN: tests).
 
 The corpus below is parsed twice:
 - by a plain Lark parser built from a rewritten copy of st.lark, in which no rule is inlined
@@ -7,7 +7,8 @@ The corpus below is parsed twice:
 - by the real front end (`parse_st` with AstBuilder), which must report no syntax error and
   leave no lark Tree in the AST.
 Every rule and alias must occur, and each must have an AstBuilder method or be an inlined
-`?rule` (whose single child passes through).
+`?rule` (whose single child passes through). rll.lark gets the same treatment with
+RllBuilder; the ST expression rules it imports are covered by the ST corpus.
 """
 
 from __future__ import annotations
@@ -21,9 +22,11 @@ import pytest
 from lark import Lark, Token, Tree
 
 from interpreter.syntax import nodes, st_parser
+from interpreter.syntax.rll_parser import RllBuilder, parse_rll, parse_rung
 from interpreter.syntax.st_parser import AstBuilder, parse_st
 
 GRAMMAR = Path(st_parser.__file__).with_name("st.lark")
+RLL_GRAMMAR = GRAMMAR.with_name("rll.lark")
 
 CORPUS: dict[str, str] = {
     "program_unit": """
@@ -117,11 +120,11 @@ CORPUS: dict[str, str] = {
 EXPRESSIONS = ["Axis1.ActualPosition", "arr[2]", "d.5", "-1.5", "a + b * 2"]
 
 
-def _unlined_grammar() -> str:
-    """st.lark with no `?` inlining and every alias prefixed by its rule: `-> rule__alias`."""
+def _unlined_grammar(path: Path = GRAMMAR) -> str:
+    """A grammar with no `?` inlining and every alias prefixed by its rule: `-> rule__alias`."""
     out = []
     current: str | None = None
-    for line in GRAMMAR.read_text().splitlines():
+    for line in path.read_text().splitlines():
         rule = re.match(r"^\??([a-z_][a-z0-9_]*)\s*:", line)
         if rule:
             current = rule.group(1)
@@ -139,8 +142,8 @@ def _plain() -> Lark:
     return Lark(_unlined_grammar(), parser="lalr", lexer="contextual", maybe_placeholders=True, start=["start", "expr"])
 
 
-def _inlined_rules() -> set[str]:
-    return {m.group(1) for m in re.finditer(r"^\?([a-z_][a-z0-9_]*)\s*:", GRAMMAR.read_text(), re.M)}
+def _inlined_rules(path: Path = GRAMMAR) -> set[str]:
+    return {m.group(1) for m in re.finditer(r"^\?([a-z_][a-z0-9_]*)\s*:", path.read_text(), re.M)}
 
 
 def _grammar_names() -> set[str]:
@@ -227,3 +230,73 @@ def test_program_scope_reference_parses() -> None:
     e = st_parser.parse_expression("Program:Main.Tag")
     assert isinstance(e, nodes.Member) and isinstance(e.base, nodes.Name)
     assert (e.base.ident, e.name) == ("Program:Main", "Tag")
+
+
+# ------------------------------------------------------------------ rll.lark
+RLL_CORPUS: dict[str, str] = {
+    "plain": "XIC(a)XIO(b)OTE(c);",
+    "numbered": "N: [XIC(a),[XIC(b),],]OTE(c);",
+    "comment": 'RC: "one; two" "three";',
+    "operands": "TON(t,?,?)GSV(WallClockTime,,LocalDateTime,d)MAM(ax,mc,0,1.0,Units per sec)NOP();",
+    "expressions": "CMP(a+b>c)CPT(d,ABS(x)*2);",
+    "empty": ";",
+}
+RLL_RUNGS = ["XIC(a)OTE(b)", "[,XIC(a)]OTE(b);"]
+
+
+@cache
+def _rll_plain() -> Lark:
+    return Lark(
+        _unlined_grammar(RLL_GRAMMAR), parser="lalr", lexer="contextual", maybe_placeholders=True,
+        start=["rung_line", "rung_only"], source_path=str(RLL_GRAMMAR), import_paths=[str(RLL_GRAMMAR.parent)],
+    )
+
+
+def _rll_imported() -> set[str]:
+    m = re.search(r"^%import \.st \(([^)]*)\)", RLL_GRAMMAR.read_text(), re.M)
+    assert m is not None
+    return {x.strip() for x in m.group(1).split(",")}
+
+
+def _rll_grammar_names() -> set[str]:
+    """Rules and aliases rll.lark itself defines (imported ST rules arrive as `st__...`)."""
+    names = {str(r.alias or r.origin.name) for r in _rll_plain().rules}
+    return {x for x in names if not x.startswith(("_", "st__")) and x not in _rll_imported()}
+
+
+def test_every_rll_rule_and_alias_is_exercised() -> None:
+    seen: set[str] = set()
+    for text in RLL_CORPUS.values():
+        seen.update(_tree_names(_rll_plain().parse(text, start="rung_line")))
+    for text in RLL_RUNGS:
+        seen.update(_tree_names(_rll_plain().parse(text, start="rung_only")))
+    missing = sorted(_rll_grammar_names() - seen)
+    assert not missing, f"rll.lark rules/aliases no corpus line reaches: {missing}"
+
+
+def test_every_rll_rule_and_alias_is_handled_by_the_builder() -> None:
+    inlined = _inlined_rules(RLL_GRAMMAR)
+    unhandled = []
+    for name in sorted(_rll_grammar_names()):
+        rule, _, alias = name.partition("__")
+        target = alias or rule
+        if not (rule in inlined and not alias) and not callable(getattr(RllBuilder, target, None)):
+            unhandled.append(name)
+    assert not unhandled, f"rll.lark rules/aliases without an RllBuilder method: {unhandled}"
+
+
+def test_rll_corpus_parses_cleanly_into_a_pure_ast() -> None:
+    routine, diags = parse_rll("\n".join(RLL_CORPUS.values()) + "\n", "corpus.rll")
+    assert not diags, [d.text() for d in diags]
+    assert len(routine.rungs) == len(RLL_CORPUS) - 1  # the RC: line is a comment
+    _no_lark_objects(routine.rungs, "rungs")
+    for text in RLL_RUNGS:
+        rung, diags = parse_rung(text, "r.L5X", 0)
+        assert not diags
+        _no_lark_objects(rung, text)
+
+
+def test_rll_imports_only_what_st_lark_defines() -> None:
+    # the shared expression grammar must stay importable: each imported name exists in st.lark
+    defined = {m.group(1) for m in re.finditer(r"^\??([A-Za-z_][A-Za-z0-9_]*)(\.\d+)?\s*:", GRAMMAR.read_text(), re.M)}
+    assert _rll_imported() <= defined

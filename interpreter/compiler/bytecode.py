@@ -17,6 +17,7 @@ Values:
   SYS name            push a system flag (S:FS ...)
   LOAD type           pop place, push its value
   STORE type          pop value, pop place, convert the value to `type` and store it
+                      (a structure or array value is copied element by element)
   REF type            pop place, push a reference object (Ref/BitRef) for an instruction
   AREF type dims      pop place of an array element, push an ArrayRef from that element
   VALUE               pop place, push the structure/array object itself (by reference)
@@ -25,15 +26,37 @@ Values:
   BIN (op, type)      pop b, a; push a op b computed in `type` (wraps, float32 rounding)
   CMP (op, type)      pop b, a; push BOOL
   FN (key, type)      pop the argument, call the catalog function, push the result as `type`
+  RETV (i, type)      push return value i of the last JSR, converted to `type`
+  RETN n              push whether the last JSR's routine returned values (RET); a RET with
+                      another count than n is major fault 4/31
 Statements:
-  CALL (key, n, rung) pop n operands, call the instruction implementation
-  PRESCAN (key, n)    same, the instruction's prescan action
-  JSR name            call another routine of the program
+  CALL (key, n, rung) pop n operands, call the instruction implementation with the literal
+                      rung condition `rung` (True in ST; ladder transitional calls pass
+                      True on the rung's rising edge and False on a false rung)
+  PRESCAN (key, n)    same, the instruction's prescan action (rung True in ST, False in ladder)
+  JSR name            call another routine of the program (clears the return values first)
+  SETRV n             pop n values: the return values handed back to the calling JSR (RET)
+  RETURN              leave the routine at once (RET, TND)
+  FAULT (t, c, text)  raise major fault type t code c
   IF / ELSE / END     pop a condition; structured blocks
   LOOP / END          an endless loop left by BREAK
   BREAK, BREAK_IFNOT  leave the innermost LOOP (BREAK_IFNOT pops a condition)
   TSET k / TGET k     temporaries (CASE selector, FOR bounds)
   STEP n loop         count n statements for the watchdog (loop=True also checks the budget)
+  POP                 drop the top value (a pure expression)
+
+Ladder (ladder_compiler.py). The rung condition is a value like any other: it flows on the
+stack as a pure expression and is kept in a temporary (TSET/TGET) wherever an output
+instruction needs it. Rung values are truthy (0/1/True/False); stores normalise them.
+  LAND, LOR           pop b, a; push the rung condition a AND b / a OR b (b is not read when
+                      a decides the result: a false rung does not execute its inputs)
+  RCALL (key, n)      pop n operands and the rung condition beneath them; call the ladder
+                      implementation impl(ctx, rung, *operands); push the rung-out (its
+                      result, or the rung when it returns None)
+  EDGE k              push the place of edge bit k (BOOL) of this routine: the rung state a
+                      transitional instruction's call site saw last time
+  STOREF type         STORE that also sets the math status flags S:N, S:Z and S:V (the
+                      value did not fit `type`) from the stored value (ladder MOV, CPT, FAL)
 """
 
 from __future__ import annotations
@@ -75,6 +98,17 @@ class Op(Enum):
     TSET = "TSET"
     TGET = "TGET"
     STEP = "STEP"
+    POP = "POP"
+    RETV = "RETV"
+    RETN = "RETN"
+    SETRV = "SETRV"
+    RETURN = "RETURN"
+    FAULT = "FAULT"
+    LAND = "LAND"
+    LOR = "LOR"
+    RCALL = "RCALL"
+    EDGE = "EDGE"
+    STOREF = "STOREF"
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,6 +132,8 @@ class Code:
     prescan: list[Ins] = field(default_factory=list)
     sites: list[tuple[str, Span]] = field(default_factory=list)
     temps: int = 0
+    language: str = "st"  # which implementation of a two-language instruction calls use
+    edges: list[int] = field(default_factory=list)  # edge bits of transitional call sites (EDGE k)
 
     def site(self, path: str, span: Span) -> int:
         self.sites.append((path, span))

@@ -35,9 +35,12 @@ class RoutineCompiler:
         if sites is not None:
             self.code.sites = sites  # one site table shared by all routines of a program
         self.ops = self.code.ops
+        self.site_span: n.Span | None = None  # when set, every fault site points here
 
     # ------------------------------------------------------------ helpers
     def emit(self, op: Op, arg: object = None, span: n.Span | None = None) -> None:
+        if span is not None and self.site_span is not None:
+            span = self.site_span
         site = self.code.site(self.r.path, span) if span is not None else -1
         self.ops.append(Ins(op, arg, site))
 
@@ -205,10 +208,8 @@ class RoutineCompiler:
             self.fb_call(c, fb)
             return
         ins = self.a.call_of[id(c)]
-        if ins.name == "JSR":
-            target = c.args[0].value
-            assert isinstance(target, n.Name)
-            self.emit(Op.JSR, self.model.routine(target.ident).name, c.span)  # type: ignore[union-attr]
+        if ins.name in ("JSR", "SBR", "RET", "TND"):
+            self.program_control(ins.name, [a.value for a in c.args], c.span)
             return
         count = self.operands(c, ins)
         self.emit(Op.CALL, (ins.key, count, True), c.span)
@@ -217,6 +218,9 @@ class RoutineCompiler:
         for i, arg in enumerate(c.args):
             op = ins.operands[min(i, len(ins.operands) - 1)]
             e = arg.value
+            if isinstance(e, n.Placeholder):  # ladder `?`: the implementation reads the tag
+                self.emit(Op.CONST, (None, None))
+                continue
             if id(e) in self.a.enum_of:
                 self.emit(Op.CONST, (self.a.enum_of[id(e)], DINT))
                 continue
@@ -254,6 +258,60 @@ class RoutineCompiler:
                 self.value(e, REAL if int_literal_for_real(e, t, op.types) else t)
         return len(c.args)
 
+    # ------------------------------------------------------------ subroutines
+    def program_control(self, name: str, args: list[n.Expr], span: n.Span) -> None:
+        """JSR with parameters, SBR, RET and TND, shared by ST and ladder."""
+        if name == "JSR":
+            self.jsr(args, span)
+        elif name == "RET":
+            for e in args:
+                t = self.type_of(e)
+                self.value(e, t)
+            self.emit(Op.SETRV, len(args))  # RET() hands back no values: a JSR expecting some faults
+            self.emit(Op.RETURN)
+        elif name == "TND":
+            self.emit(Op.RETURN)
+        # SBR does nothing where it stands: the calling JSR stores the parameters into it.
+
+    def jsr(self, args: list[n.Expr], span: n.Span) -> None:
+        target = args[0]
+        assert isinstance(target, n.Name)
+        routine = self.model.routine(target.ident, self.r.program_name)  # L5X: within the program
+        assert routine is not None
+        count = const_number(args[1]) if len(args) > 1 else 0
+        count = count if isinstance(count, int) and count > 0 else 0
+        inputs, returns = args[2 : 2 + count], args[2 + count :]
+        params = sbr_params(routine, self.a)
+        saved, self.site_span = self.site_span, span  # parameter places live in the callee's file
+        if len(inputs) != len(params):
+            self.emit(
+                Op.FAULT,
+                (4, 31, f"JSR passes {len(inputs)} parameter(s), the SBR of {routine.name} takes {len(params)}"),
+                span,
+            )
+        temps = []
+        for e, p in zip(inputs, params, strict=False):  # evaluate every input before storing any
+            k = self.temp()
+            self.value(e, self.type_of(p))
+            self.emit(Op.TSET, k)
+            temps.append(k)
+        for k, p in zip(temps, params, strict=False):
+            pt = self.type_of(p)
+            self.place(p)
+            self.emit(Op.TGET, (k, pt))
+            self.emit(Op.STORE, pt, span)
+        self.emit(Op.JSR, routine.name, span)
+        if returns:
+            self.emit(Op.RETN, len(returns), span)
+            self.emit(Op.IF)
+            for i, e in enumerate(returns):
+                t = self.type_of(e)
+                self.place(e)
+                self.emit(Op.RETV, (i, t))
+                self.emit(Op.STORE, t, span)
+            self.emit(Op.END)
+        self.site_span = saved
+
     def fb_call(self, c: n.Call, fb: FBCall) -> None:
         for idx, mt, value in fb.inputs:
             self.place(fb.instance)
@@ -277,6 +335,8 @@ class RoutineCompiler:
         if isinstance(e, n.Name):
             tag = self.a.tag_of[id(e)]
             self.emit(Op.TAG, tag.slot)
+            for pos in tag.access:  # AOI frame members, alias paths
+                self.emit(Op.MEMBER, pos)
         elif isinstance(e, n.Member):
             self.place(e.base)
             bt = self.type_of(e.base)
@@ -383,7 +443,7 @@ class RoutineCompiler:
                 self.emit(Op.STORE, t, s.span)
             elif isinstance(s, n.CallStmt) and id(s.call) in self.a.call_of:
                 ins = self.a.call_of[id(s.call)]
-                if ins.name != "JSR" and lookup_prescan(ins.name, "st") is not None:
+                if ins.name != "JSR" and (ins.family == "aoi" or lookup_prescan(ins.name, "st") is not None):
                     count = self.operands(s.call, ins)
                     self.emit(Op.PRESCAN, (ins.key, count), s.span)
         self.ops = main_ops
@@ -404,6 +464,24 @@ def _walk(body: list[n.Stmt]):  # type: ignore[no-untyped-def]
                 yield from _walk(s.else_body)
         elif isinstance(s, n.For | n.While | n.Repeat):
             yield from _walk(s.body)
+
+
+def sbr_params(routine: n.Routine, analysis: Analysis) -> list[n.Expr]:
+    """The operands of the first SBR of a routine (its input parameters), or []."""
+    if routine.language == "st":
+        for s in _walk(routine.body):
+            if isinstance(s, n.CallStmt) and s.call.name.upper() == "SBR":
+                return [a.value for a in s.call.args]
+        return []
+    stack: list[object] = [el for rung in routine.rungs for el in rung.elements]
+    stack.reverse()
+    while stack:
+        el = stack.pop()
+        if isinstance(el, n.Branch):
+            stack.extend(reversed([x for leg in el.legs for x in leg]))
+        elif isinstance(el, n.LadderInstr) and el.name.upper() == "SBR":
+            return list(el.operands)
+    return []
 
 
 def compile_routine(

@@ -62,18 +62,25 @@ def _preset_ok(t: list) -> bool:
     return not invalid
 
 
-def _start_timing(ctx: ExecContext, t: list, keep_fraction: bool = False) -> None:
-    t[T_LAST] = ctx.now_ms
+def _start_timing(
+    ctx: ExecContext, t: list, keep_fraction: bool = False, last: int = T_LAST, frac: int = T_FRAC
+) -> None:
+    """Remember now as the previous execution time (`last`/`frac` index the hidden members)."""
+    t[last] = ctx.now_ms
     if not keep_fraction:
-        t[T_FRAC] = 0.0
+        t[frac] = 0.0
 
 
-def _elapsed_ms(ctx: ExecContext, t: list) -> int:
-    """Whole milliseconds since the previous execution; the remainder is carried."""
-    total = max(0.0, ctx.now_ms - t[T_LAST]) + t[T_FRAC]
+def _elapsed_ms(ctx: ExecContext, t: list, last: int = T_LAST, frac: int = T_FRAC) -> int:
+    """Whole milliseconds since the previous execution; the remainder is carried.
+
+    Shared with the ladder timers (ladder_timers_counters.py), whose TIMER keeps the same two
+    hidden members at other indices.
+    """
+    total = max(0.0, ctx.now_ms - t[last]) + t[frac]
     whole = math.floor(total + _EPS)
-    t[T_FRAC] = max(0.0, total - whole)
-    t[T_LAST] = ctx.now_ms
+    t[frac] = max(0.0, total - whole)
+    t[last] = ctx.now_ms
     return int(whole)
 
 

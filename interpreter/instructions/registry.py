@@ -18,8 +18,16 @@ from typing import Any
 
 Impl = Callable[..., Any]
 
+# Instructions the compilers lower to bytecode themselves: they have no implementation
+# function (ladder contacts and coils, compares, MOV, CPT, CMP, FAL, FSC, program control).
+LOWERED = frozenset({
+    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
+    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
+})
+
 IMPLEMENTATIONS: dict[str, Impl] = {}
 PRESCANS: dict[str, Impl] = {}
+_LOADED = False
 
 
 def implements(*names: str) -> Callable[[Impl], Impl]:
@@ -58,9 +66,13 @@ def load_all() -> None:
 
     from .. import instructions
 
+    global _LOADED
+    if _LOADED:  # lookups run per call site; scanning the package each time cost seconds on big projects
+        return
     for mod in pkgutil.iter_modules(instructions.__path__):
         if mod.name not in ("registry",):
             importlib.import_module(f"{instructions.__name__}.{mod.name}")
+    _LOADED = True
 
 
 def lookup(name: str, language: str) -> Impl | None:

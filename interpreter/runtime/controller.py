@@ -6,7 +6,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..compiler.ladder_compiler import compile_ladder
 from ..compiler.st_compiler import RoutineCompiler, compile_routine
+from ..semantics.aoi import Aoi
 from ..semantics.checker import Checker
 from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
 from ..syntax import nodes as n
@@ -14,9 +16,11 @@ from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
 from ..vm.context import ExecContext, MajorFault
 from ..vm.values import string_text
+from .aoi import AoiRoutines, make_impls
 from .loader import Loaded
 from .motion import MotionRuntime
 from .storage import allocate
+from .tasks import Schedule
 
 DEFAULT_WATCHDOG = 5_000_000
 
@@ -67,31 +71,91 @@ class Controller:
         # the motion planner runs before each scan (SPEC 9.3); its details live in the bridge
         self.ctx.motion = MotionRuntime(self.model, self.T, coarse_update_ms)
         self.sites: list[tuple[str, n.Span]] = []
-        self.ns: dict[str, Any] = dict(HELPERS)
-        self.ns["_R"] = {}
-        self.routines: dict[str, Callable[..., None]] = {}
+        self.aoi_impls: dict[str, Callable[..., object]] = {}
+        self.aoi_prescans: dict[str, Callable[..., object]] = {}
+        self.ns = self._namespace()
         self.prescans: list[Callable[..., None]] = []
-        for i, r in enumerate(self.model.routines):
-            if r.language != "st":
-                continue
-            code = compile_routine(self.model, self.analysis, r, self.sites)
-            self.routines[r.name.upper()] = self._translate(code, code.ops, f"_routine{i}")
-            self.prescans.append(self._translate(code, code.prescan, f"_prescan{i}"))
-        self.ns["_R"].update(self.routines)
-        self.main = self.routines[self.model.main.upper()]
+        self._compile_aois()
+        if self.model.programs:
+            # One namespace per L5X program: JSR names resolve among that program's routines.
+            self.routines: dict[str, Callable[..., None]] = {}
+            mains: dict[str, Callable[..., None]] = {}
+            for key, info in self.model.programs.items():
+                ns = self._namespace()
+                own = [r for r in self.model.routines if (r.program_name or "").upper() == key]
+                compiled = self._compile_routines(own, ns, f"_{len(mains)}")
+                if info.main.upper() in compiled:
+                    mains[key] = compiled[info.main.upper()]
+            self.schedule = Schedule.for_project(self.model, mains)
+        else:
+            self.routines = self._compile_routines(self.model.routines, self.ns, "")
+            self.schedule = Schedule.single(self.routines[self.model.main.upper()])
         self.scans = 0
         self.major_fault: Fault | None = None
 
-    def _translate(self, code: Any, ops: list, name: str) -> Callable[..., None]:
-        src = Translator(code, self.ns, name, ops).translate()
-        exec(compile(src, f"<logix {code.path}:{name}>", "exec"), self.ns)  # noqa: S102
-        return self.ns[name]  # type: ignore[no-any-return]
+    def _namespace(self) -> dict[str, Any]:
+        ns: dict[str, Any] = dict(HELPERS)
+        ns["_R"] = {}
+        ns["_AOI"] = self.aoi_impls
+        ns["_AOI_PRE"] = self.aoi_prescans
+        return ns
+
+    def _compile_routines(self, routines: list[n.Routine], ns: dict[str, Any], tag: str) -> dict[str, Callable[..., None]]:
+        compiled: dict[str, Callable[..., None]] = {}
+        for i, r in enumerate(routines):
+            if r.language == "st":
+                code = compile_routine(self.model, self.analysis, r, self.sites)
+            elif r.language == "rll":
+                code = compile_ladder(self.model, self.analysis, r, self.sites)
+            else:
+                continue
+            compiled[r.name.upper()] = self._translate(code, code.ops, f"_routine{tag}_{i}", ns)
+            self.prescans.append(self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns))
+        ns["_R"].update(compiled)
+        return compiled
+
+    def _compile_aois(self) -> None:
+        """Implementations first (calls may nest), then each definition's routines once."""
+        done: list[tuple[Aoi, AoiRoutines]] = []
+        for aoi in self.model.aois.values():
+            assert isinstance(aoi, Aoi) and aoi.instruction is not None
+            routines = AoiRoutines()
+            call, pre = make_impls(aoi, routines)
+            self.aoi_impls[aoi.instruction.key] = call
+            self.aoi_prescans[aoi.instruction.key] = pre
+            done.append((aoi, routines))
+        for k, (aoi, routines) in enumerate(done):
+            for name, r in aoi.routines.items():
+                if name not in ("LOGIC", "ENABLEINFALSE"):
+                    continue
+                if r.language == "rll":
+                    code = compile_ladder(self.model, self.analysis, r, self.sites)
+                else:
+                    code = compile_routine(self.model, self.analysis, r, self.sites)
+                fn = self._translate(code, code.ops, f"_aoi{k}_{name.lower()}", self.ns)
+                if name == "LOGIC":
+                    routines.logic = fn
+                    routines.logic_prescan = self._translate(code, code.prescan, f"_aoi{k}_prescan", self.ns)
+                else:
+                    routines.enable_in_false = fn
+
+    def _translate(self, code: Any, ops: list, name: str, ns: dict[str, Any] | None = None) -> Callable[..., None]:
+        ns = self.ns if ns is None else ns
+        src = Translator(code, ns, name, ops).translate()
+        exec(compile(src, f"<logix {code.path}:{name}>", "exec"), ns)  # noqa: S102
+        return ns[name]  # type: ignore[no-any-return]
 
     # ------------------------------------------------------------ running
-    def prescan(self) -> None:
+    def prescan(self) -> bool:
+        """Prescan every routine once (SPEC 3.2); False when it major-faulted (a bad subscript)."""
         self.ctx.steps = 0
-        for p in self.prescans:
-            p(self.T, self.ctx)
+        try:
+            for p in self.prescans:
+                p(self.T, self.ctx)
+        except MajorFault as f:
+            self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
+            return False
+        return True
 
     def scan(self) -> bool:
         """Run one normal scan; False when the controller major-faulted."""
@@ -102,19 +166,26 @@ class Controller:
         if ctx.motion is not None:
             ctx.motion.before_scan(ctx.now_ms)
         try:
-            self.main(self.T, ctx)
+            self.schedule.run(self.T, ctx)
         except MajorFault as f:
             self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
             return False
         except RecursionError:
-            self.major_fault = self._fault(4, 83, "JSR nesting too deep", ctx.site)
+            self.major_fault = self._fault(4, 84, True, "stack overflow: JSR calls nested too deep", ctx.site)
             return False
         finally:
             self.scans += 1
         return True
 
     def _fault(self, type_: int, code: int, major: bool, message: str, site: int, count: int = 1) -> Fault:
-        path, span = self.sites[site] if 0 <= site < len(self.sites) else (self.model.routines[0].path, n.Span(1, 1, 1, 1))
+        if 0 <= site < len(self.sites):
+            path, span = self.sites[site]
+        else:
+            path, span = (self.model.routines[0].path if self.model.routines else self.model.name), n.Span(1, 1, 1, 1)
+        project = self.model.extra.get("l5x")
+        where = project.context.get(span.line) if project is not None and path == project.path else None  # type: ignore[attr-defined]
+        if where:
+            message = f"{message} ({where})"
         return Fault(type_, code, major, message, path, span.line, span.col, count)
 
     def faults(self) -> list[Fault]:
@@ -136,6 +207,7 @@ class Controller:
             raise WatchError(str(exc)) from None
         if not isinstance(expr, n.Name | n.Member | n.Index | n.Bit | n.IndirectBit):
             raise WatchError(f"'{text}' is not a tag reference")
+        expr = _qualify(expr)
         checker = Checker(self.model)
         checker.a = self.analysis
         before = len(self.analysis.diags)
@@ -163,6 +235,7 @@ class Controller:
         def setter(value: object) -> None:
             if not isinstance(t, Elementary):
                 raise WatchError(f"'{text}' is a {t}: only elementary tags can be set")
+            _check_settable(text, value, t)
             store_ops = place_ops + [Ins(Op.CONST, (value, _literal_type(value, t))), Ins(Op.STORE, t)]
             tr2 = Translator(rc.code, self.ns, "_s", store_ops)
             tr2.indent = 1
@@ -173,6 +246,31 @@ class Controller:
             self.ns[sname](self.T, self.ctx)
 
         return (lambda: fn(self.T, self.ctx)), t, setter
+
+
+def _qualify(e: n.Expr) -> n.Expr:
+    """`Program:Main.Tag...` parses as member Tag of `Program:Main`: make the root one name."""
+    if isinstance(e, n.Member) and isinstance(e.base, n.Name) and e.base.ident.upper().startswith("PROGRAM:"):
+        return n.Name(f"{e.base.ident}.{e.name}", e.span)
+    for attr in ("base",):
+        inner = getattr(e, attr, None)
+        if inner is not None:
+            q = _qualify(inner)
+            if q is not inner:
+                setattr(e, attr, q)
+    return e
+
+
+def _check_settable(text: str, value: object, t: Elementary) -> None:
+    """--set never wraps silently: the value must fit the tag's type (SPEC 9.12)."""
+    if isinstance(value, bytes | str):
+        raise WatchError(f"'{text}' is {t.name}: a string cannot be stored in it")
+    if t.kind is Kind.BOOL and value not in (0, 1):
+        raise WatchError(f"'{text}' is BOOL: use 1/0 or TRUE/FALSE, not {value!r}")
+    if t.kind is Kind.INT:
+        lo, hi = (-(1 << (t.bits - 1)), (1 << (t.bits - 1)) - 1) if t.signed else (0, (1 << t.bits) - 1)
+        if not lo <= value <= hi:  # type: ignore[operator]  # a REAL literal is rounded later, as by ':='
+            raise WatchError(f"'{text}' is {t.name}: {value} is outside {lo}..{hi}")
 
 
 def _literal_type(value: object, target: Elementary) -> Elementary:
@@ -200,5 +298,8 @@ def to_json_value(value: object, t: DataType | None) -> object:
         }
     if isinstance(t, ArrayType):
         assert isinstance(value, list)
-        return [to_json_value(v, t.elem) for v in value]
+        flat = [to_json_value(v, t.elem) for v in value]
+        for size in reversed(t.dims[1:]):  # row-major storage: nest from the last subscript out
+            flat = [flat[i:i + size] for i in range(0, len(flat), size)]
+        return flat
     return value if isinstance(value, int | float | str | bool) or value is None else str(value)

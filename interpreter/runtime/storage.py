@@ -12,11 +12,16 @@ def allocate(model: ProgramModel) -> list[object]:
     """Give every tag a slot and its initial value; returns the storage list T."""
     storage: list[object] = []
     for tag in model.tags.values():
+        if tag.alias_of is not None:
+            continue
         tag.slot = len(storage)
         value = default_value(tag.type)
         if tag.init is not None:
             value = initial_value(tag.type, tag.init, value, model, storage)
         storage.append(value)
+    for tag in model.tags.values():
+        if tag.alias_of is not None:  # an alias reaches its target's storage (its access path)
+            tag.slot = tag.alias_of.slot
     return storage
 
 

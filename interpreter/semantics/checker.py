@@ -12,7 +12,10 @@ from dataclasses import dataclass, field
 from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
+from ..instructions.registry import LOWERED
 from ..syntax import nodes as n
+from .aoi import Aoi, same_shape
+from .ladder_check import LadderChecks
 from .program import ProgramModel, Tag, const_number
 from .types import (
     BOOL,
@@ -30,6 +33,7 @@ from .types import (
 SYSTEM_FLAGS = {"S:FS": "FS", "S:N": "N", "S:Z": "Z", "S:V": "V", "S:C": "C", "S:MINOR": "MINOR"}
 ST_SYSTEM_FLAGS = {"S:FS"}
 LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
+# Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
 REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
 
 
@@ -112,7 +116,7 @@ def describe(t: DataType | None) -> str:
     return "unknown" if t is None else str(t)
 
 
-class Checker:
+class Checker(LadderChecks):
     """One pass over a ProgramModel's routines."""
 
     def __init__(self, model: ProgramModel) -> None:
@@ -125,16 +129,58 @@ class Checker:
         self.guard_depth = 0
         self.for_vars: list[str] = []
         self.motion_uses: dict[str, int] = {}
+        self.scope: str | None = None  # the L5X program whose routine is being checked
+        self.aoi: Aoi | None = None  # the add-on instruction whose routine is being checked
+
+    def lookup(self, name: str) -> Tag | None:
+        """A tag visible here: AOI parameters and locals inside an AOI, else program then controller."""
+        if self.aoi is not None:
+            return self.aoi.tags.get(name.upper())
+        return self.model.tag(name, self.scope)
+
+    def find_instruction(self, name: str) -> Instruction | None:
+        """A project's add-on instruction, else the catalog instruction of this language."""
+        aoi = self.model.aois.get(name.upper())
+        if aoi is not None:
+            return aoi.instruction  # type: ignore[attr-defined, no-any-return]
+        return self.cat.instruction(name, self.language)
 
     # ------------------------------------------------------------ entry
     def run(self) -> Analysis:
+        projects = bool(self.model.programs)
         for r in self.model.routines:
-            self.path = r.path
-            self.language = r.language
-            self.check_initialisers(r)
-            if r.language == "st":
-                self.stmts(r.body)
+            self.routine(r, r.program_name if projects else None)
+        for aoi in self.model.aois.values():
+            self.aoi = aoi  # type: ignore[assignment]
+            for r in aoi.routines.values():  # type: ignore[attr-defined]
+                self.routine(r, None)
+            self.aoi = None
+        if "l5x" in self.model.extra or "tag_data" in self.model.extra:
+            self.check_tag_data()
         return self.a
+
+    def routine(self, r: n.Routine, scope: str | None) -> None:
+        self.path = r.path
+        self.language = r.language
+        self.scope = scope
+        self.check_initialisers(r)
+        if r.language == "st":
+            self.stmts(r.body)
+        elif r.language == "rll":
+            self.rungs(r.rungs)
+
+    def check_tag_data(self) -> None:
+        """L5X tags (and AOI parameter defaults): exported data must fit the declared type."""
+        source = self.model.extra.get("tag_data")  # --tags: only the tags that came from it
+        tags = [t for t in self.model.tags.values() if source is None or t.init_path == source]
+        for aoi in self.model.aois.values():
+            tags.extend(aoi.tags.values())  # type: ignore[attr-defined]
+        for tag in tags:
+            if tag.init is not None and tag.alias_of is None:
+                self.path = tag.init_path or tag.path
+                self.scope = tag.program
+                self.check_init(tag.init, tag.type)
+        self.scope = None
 
     def err(self, code: str, msg: str, span: n.Span) -> None:
         self.a.diags.append(diag(code, msg, self.path, span))
@@ -145,7 +191,7 @@ class Checker:
             if d.init is None:
                 continue
             for name, _ in d.names:
-                tag = self.model.tag(name)
+                tag = self.lookup(name)
                 if tag is not None and tag.init_path == r.path:
                     self.check_init(d.init, tag.type)
                     break
@@ -177,7 +223,7 @@ class Checker:
                 mt = m[1]
                 if isinstance(value, n.ArrayInit) and isinstance(mt, ArrayType) and is_axis(mt.elem):
                     for item in value.items:
-                        tag = self.model.tag(item.ident) if isinstance(item, n.Name) else None
+                        tag = self.lookup(item.ident) if isinstance(item, n.Name) else None
                         if tag is None or not is_axis(tag.type):
                             self.err("E118", "Axes must name axis tags of this program", _init_span(item))
                     if not 2 <= len(value.items) <= 3:
@@ -347,32 +393,48 @@ class Checker:
 
     # ------------------------------------------------------------ calls
     def call_stmt(self, c: n.Call) -> None:
-        tag = self.model.tag(c.name)
+        tag = self.lookup(c.name)
         if tag is not None and isinstance(tag.type, StructType):
             ins = self.cat.instruction(tag.type.name, "st")
             if ins is not None:
                 self.fb_call(c, tag, ins)
                 return
-        ins = self.cat.instruction(c.name, self.language)
+        named = next((a for a in c.args if a.name is not None), None)
+        self.instruction(c, c.name, c.name_span, c.span, [a.value for a in c.args], named)
+
+    def ladder_instr(self, i: n.LadderInstr) -> None:
+        self.instruction(i, i.name, i.name_span, i.span, i.operands, None)
+
+    def instruction(
+        self, node: n.Call | n.LadderInstr, name: str, name_span: n.Span, span: n.Span,
+        args: list[n.Expr], named: n.Arg | None,
+    ) -> None:
+        """An instruction call, ST statement or ladder element alike: catalog entry and operands."""
+        ins = self.find_instruction(name)
         if ins is None:
-            other = self.cat.instruction_any(c.name)
+            other = self.cat.instruction_any(name)
             if other is not None:
-                self.err("E126", f"{c.name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}", c.name_span)
+                self.err("E126", f"{name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}", name_span)
             else:
                 names = sorted({i.name for i in self.cat.instructions})
-                self.err("E103", f"unknown instruction '{c.name}'{self.suggest(c.name, names)}", c.name_span)
-            for a in c.args:
-                self.expr(a.value)
+                self.err("E103", f"unknown instruction '{name}'{self.suggest(name, names)}", name_span)
+            for e in args:
+                self.expr(e)
             return
         if ins.kind == "function":
-            self.err("E126", f"{ins.name} is a function: use it in an expression", c.name_span)
+            self.err("E126", f"{ins.name} is a function: use it in an expression", name_span)
             return
-        self.a.call_of[id(c)] = ins
-        self.operands(c, ins)
-        self.require_implementation(ins, c.name_span)
+        self.a.call_of[id(node)] = ins
+        if named is not None:
+            self.err("E130", "named parameters are only for function block instances", named.span)
+        else:
+            self.operands(ins, args, span)
+            if ins.family == "aoi":
+                self.aoi_arguments(name, args)
+        self.require_implementation(ins, name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
-                diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, c.span)
+                diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, span)
             )
 
     def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
@@ -407,45 +469,82 @@ class Checker:
         self.a.fb_of[id(c)] = fb
         self.require_implementation(ins, c.name_span)
 
-    def require_implementation(self, ins: Instruction, span: n.Span) -> None:
+    def aoi_arguments(self, name: str, args: list[n.Expr]) -> None:
+        """InOut arguments are passed by reference: they need the parameter's exact type."""
+        aoi = self.model.aois[name.upper()]
+        for p, e in zip(aoi.required, args[1:], strict=False):  # type: ignore[attr-defined]
+            t = self.a.type_of.get(id(e))
+            if p.usage == "InOut" and t is not None and not same_shape(t, p.type):
+                self.err("E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span)  # type: ignore[attr-defined]
+
+    def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
         from ..instructions.registry import lookup
 
-        if ins.name != "JSR" and lookup(ins.name, self.language) is None:
+        language = language or self.language
+        if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
+            return
+        if lookup(ins.name, language) is None:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
-    def operands(self, c: n.Call, ins: Instruction) -> None:
-        for a in c.args:
-            if a.name is not None:
-                self.err("E130", "named parameters are only for function block instances", a.span)
-                return
-        args = [a.value for a in c.args]
+    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span) -> None:
         ops = ins.operands
         required = sum(1 for o in ops if not o.optional)
         if len(args) < required or (len(args) > len(ops) and not ins.variadic):
             expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
-            self.err("E104", f"{ins.name} takes {expect} operands, {len(args)} given", c.span)
+            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {len(args)} given", span)
             for e in args:
                 self.expr(e)
             return
+        inputs_end = len(ops)
+        if ins.name == "JSR" and len(args) > 1:  # JSR(Routine, n, n inputs..., returns...)
+            count = const_number(args[1])
+            inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
         for i, e in enumerate(args):
-            op = ops[i] if i < len(ops) else ops[-1]
+            if ins.name == "JSR" and i >= 2:
+                op = ops[2] if i < inputs_end else ops[3]
+            else:
+                op = ops[i] if i < len(ops) else ops[-1]
             self.operand(ins, op, e, i)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
+        if ins.name in ("GSV", "SSV") and len(args) >= 3:
+            self.system_attribute(ins, args)
+
+    def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
+        """U303 for a GSV/SSV class and attribute pair the simulator does not model."""
+        from ..instructions.ladder_system import attribute_names, unsupported
+
+        cls, attr = self.a.enum_of.get(id(args[0])), self.a.enum_of.get(id(args[2]))
+        if cls is None or attr is None:
+            return
+        c, a = attribute_names(cls, attr)
+        if unsupported(c, a, write=ins.name == "SSV"):
+            what = "set" if ins.name == "SSV" else "read"
+            self.err("U303", f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller", args[2].span)
 
     def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
+        if isinstance(e, n.Placeholder):
+            if not op.placeholder:
+                self.err("E128", f"{ins.name} operand {op.name} needs a value here, not a placeholder", e.span)
+            return
         if op.enum is not None and self.enum_operand(ins, op, e):
+            return
+        if self.language == "rll" and not op.expression and _is_expression(e):
+            self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
+            self.expr(e)
             return
         if op.format == "routine":
             if not isinstance(e, n.Name):
                 self.err("E124", "JSR needs a routine name", e.span)
-            elif self.model.routine(e.ident) is None:
-                names = [r.name for r in self.model.routines]
+            elif self.model.routine(e.ident, self.scope) is None:
+                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
                 self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
             return
         if op.format == "label":
             return
-        if isinstance(e, n.Placeholder):
+        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
+            self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
+            self.a.type_of[id(e)] = DINT
             return
         if op.nullable and const_number(e) == 0:
             return  # a literal 0 means the optional array is not used
@@ -505,7 +604,7 @@ class Checker:
         en = self.cat.enum(op.enum)
         text = _enum_text(e)
         if text is not None:
-            if isinstance(e, n.Name) and self.model.tag(e.ident) is not None and en.lookup(text) is None:
+            if isinstance(e, n.Name) and self.lookup(e.ident) is not None and en.lookup(text) is None:
                 return False  # a tag, checked as a value below
             v = en.lookup(text)
             if v is None:
@@ -517,7 +616,7 @@ class Checker:
             return True
         num = const_number(e)
         if isinstance(num, int):
-            if en.by_value(num) is None:
+            if en.by_value(num) is None and not (en.counts and num > 0):
                 vals = ", ".join(f"{x.value} {x.label}" for x in en.values)
                 self.err("E109", f"{num} is not a value of {ins.name} {op.name} ({vals})", e.span)
             else:
@@ -634,9 +733,10 @@ class Checker:
                 return None
             self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
             return BOOL
-        tag = self.model.tag(e.ident)
+        tag = self.lookup(e.ident)
         if tag is None:
-            names = [t.name for t in self.model.tags.values()]
+            pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
+            names = [t.name for t in pool]
             self.err("E101", f"undefined tag '{e.ident}'{self.suggest(e.ident, names)}", e.span)
             return None
         self.a.tag_of[id(e)] = tag
@@ -675,8 +775,20 @@ class Checker:
             return t
         return DINT if t.is_bool else t
 
+    def st_function(self, name: str) -> Instruction | None:
+        """The catalog entry for a name called in an expression; ladder mnemonics (SQR) map to
+        the function their rung instruction names as alias (SQRT)."""
+        ins = self.cat.instruction(name, "st")
+        if (ins is None or ins.kind != "function") and self.language == "rll":
+            rung_ins = self.cat.instruction(name, "rll")
+            for other in (rung_ins.name, *rung_ins.aliases) if rung_ins is not None else ():
+                f = self.cat.instruction(other, "st")
+                if f is not None and f.kind == "function":
+                    return f
+        return ins
+
     def function(self, c: n.Call) -> DataType | None:
-        ins = self.cat.instruction(c.name, "st")
+        ins = self.st_function(c.name)
         if ins is None or ins.kind != "function":
             for a in c.args:
                 self.expr(a.value)
@@ -687,7 +799,7 @@ class Checker:
                 self.err("E103", f"unknown function '{c.name}'{self.suggest(c.name.upper(), fnames)}", c.name_span)
             return None
         self.a.call_of[id(c)] = ins
-        self.require_implementation(ins, c.name_span)
+        self.require_implementation(ins, c.name_span, "st")  # functions are ST entries, in CPT too
         if len(c.args) != len(ins.operands):
             self.err("E104", f"{ins.name} takes {len(ins.operands)} argument(s), {len(c.args)} given", c.span)
             return None
@@ -702,16 +814,23 @@ class Checker:
         return t
 
 
+def _is_expression(e: n.Expr) -> bool:
+    """An operand that computes (a + b, ABS(x), NOT b), as opposed to a tag or a literal (-5)."""
+    if isinstance(e, n.Unary):
+        return not (e.op == "-" and isinstance(e.operand, n.Literal))
+    return isinstance(e, n.Binary | n.Call)
+
+
 def _enum_text(e: n.Expr) -> str | None:
     """Operand text that may be an enumeration word (`Once`, `%ofTime`, `S-Curve`)."""
     if isinstance(e, n.Name):
         return e.ident
     if isinstance(e, n.EnumText):
         return e.text
-    if isinstance(e, n.Binary) and e.op == "-":
+    if isinstance(e, n.Binary) and e.op in ("-", "/"):  # S-Curve, HIGH/LOW
         left, right = _enum_text(e.left), _enum_text(e.right)
         if left is not None and right is not None:
-            return f"{left}-{right}"
+            return f"{left}{e.op}{right}"
     return None
 
 

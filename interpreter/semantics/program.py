@@ -21,6 +21,38 @@ class Tag:
     slot: int = -1
     program: str | None = None  # program scope (L5X); None = controller / file scope
     init_path: str | None = None
+    access: tuple[int, ...] = ()  # member/element positions below the slot (AOI frames, aliases)
+    alias_of: Tag | None = None  # an alias shares its target's storage
+
+    @property
+    def qualified(self) -> str:
+        """The name `--watch` takes: `Program:Main.Tag` for program tags (SPEC 9.9)."""
+        return f"Program:{self.program}.{self.name}" if self.program else self.name
+
+
+@dataclass(slots=True)
+class ProgramInfo:
+    """An L5X program: its own tag scope, routines and main routine (SPEC 2.3, 9.16)."""
+
+    name: str
+    main: str
+    span: n.Span
+    disabled: bool = False
+
+
+@dataclass(slots=True)
+class TaskInfo:
+    name: str
+    type: str  # CONTINUOUS | PERIODIC | EVENT
+    rate_ms: float
+    priority: int
+    programs: list[str]
+    inhibited: bool = False
+
+
+def scope_key(program: str, name: str) -> str:
+    """Key of a program-scope tag in ProgramModel.tags (controller tags use the plain name)."""
+    return f"PROGRAM:{program.upper()}.{name.upper()}"
 
 
 @dataclass(slots=True)
@@ -34,15 +66,25 @@ class ProgramModel:
     main: str = ""
     coarse_update_ms: float | None = None
     extra: dict[str, object] = field(default_factory=dict)
+    programs: dict[str, ProgramInfo] = field(default_factory=dict)  # L5X only; upper name -> info
+    tasks: list[TaskInfo] = field(default_factory=list)
+    aois: dict[str, object] = field(default_factory=dict)  # upper name -> semantics.aoi.Aoi
 
-    def routine(self, name: str) -> n.Routine | None:
+    def routine(self, name: str, program: str | None = None) -> n.Routine | None:
+        """A routine by name; in an L5X project only among the routines of `program`."""
         key = name.upper()
+        scoped = program is not None and bool(self.programs)
         for r in self.routines:
-            if r.name.upper() == key:
+            if r.name.upper() == key and (not scoped or (r.program_name or "").upper() == program.upper()):  # type: ignore[union-attr]
                 return r
         return None
 
-    def tag(self, name: str) -> Tag | None:
+    def tag(self, name: str, program: str | None = None) -> Tag | None:
+        """Program tags shadow controller tags of the same name (L5X); `Program:P.T` names one."""
+        if program is not None:
+            t = self.tags.get(scope_key(program, name))
+            if t is not None:
+                return t
         return self.tags.get(name.upper())
 
 
@@ -78,24 +120,23 @@ def resolve_typeref(types: TypeTable, ref: n.TypeRef, path: str, diags: list[Dia
     return ArrayType(base, tuple(sizes))
 
 
-def build_program(name: str, routines: list[n.Routine], types: TypeTable | None = None) -> tuple[ProgramModel, list[Diagnostic]]:
-    """Collect UDTs and tag declarations of all routines into one scope (SPEC 2.4)."""
-    types = types or TypeTable()
-    diags: list[Diagnostic] = []
-    model = ProgramModel(name, routines, types, main=routines[0].name if routines else "")
-    # UDTs first, in two passes so members may name UDTs declared later.
+def declare_types(types: TypeTable, decls: list[tuple[n.TypeDecl, str]], diags: list[Diagnostic]) -> list[tuple[n.TypeDecl, StructType, str]]:
+    """Declare UDT names (first pass, so members may name UDTs declared later)."""
     udts: list[tuple[n.TypeDecl, StructType, str]] = []
-    for r in routines:
-        for td in r.types:
-            if types.get(td.name) is not None and (
-                not isinstance(types.get(td.name), StructType) or types.get(td.name).builtin  # type: ignore[union-attr]
-            ):
-                diags.append(diag("E117", f"type '{td.name}' is already defined", r.path, td.name_span))
-                continue
-            if any(u[0].name.upper() == td.name.upper() for u in udts):
-                diags.append(diag("E117", f"type '{td.name}' is declared twice", r.path, td.name_span))
-                continue
-            udts.append((td, types.declare_udt(td.name), r.path))
+    for td, path in decls:
+        existing = types.get(td.name)
+        if existing is not None and (not isinstance(existing, StructType) or existing.builtin):
+            diags.append(diag("E117", f"type '{td.name}' is already defined", path, td.name_span))
+            continue
+        if any(u[0].name.upper() == td.name.upper() for u in udts):
+            diags.append(diag("E117", f"type '{td.name}' is declared twice", path, td.name_span))
+            continue
+        udts.append((td, types.declare_udt(td.name), path))
+    return udts
+
+
+def define_members(types: TypeTable, udts: list[tuple[n.TypeDecl, StructType, str]], diags: list[Diagnostic]) -> None:
+    """Second pass: resolve every member type and default."""
     for td, st, path in udts:
         for m in td.members:
             mt = resolve_typeref(types, m.type, path, diags)
@@ -110,17 +151,41 @@ def build_program(name: str, routines: list[n.Routine], types: TypeTable | None 
                             diags.append(diag("E118", "a member default must be a number", path, m.span))
                         else:
                             st.defaults[mname.upper()] = value
+
+
+def declare_tags(model: ProgramModel, decls: list[n.VarDecl], path: str, diags: list[Diagnostic], program: str | None = None) -> None:
+    """Add tags to the model; program tags are keyed `PROGRAM:P.NAME` (see scope_key)."""
+    types = model.types
+    for d in decls:
+        t = resolve_typeref(types, d.type, path, diags)
+        for tname, tspan in d.names:
+            key = scope_key(program, tname) if program is not None else tname.upper()
+            if key in model.tags:
+                prev = model.tags[key]
+                diags.append(diag("E117", f"tag '{tname}' is already declared at line {prev.span.line}", path, tspan))
+                continue
+            if t is not None:
+                model.tags[key] = Tag(tname, t, tspan, path, d.init, program=program, init_path=path)
+
+
+def build_program(
+    name: str,
+    routines: list[n.Routine],
+    types: TypeTable | None = None,
+    shared: tuple[list[n.VarDecl], str] | None = None,
+) -> tuple[ProgramModel, list[Diagnostic]]:
+    """Collect UDTs and tag declarations of all routines into one scope (SPEC 2.4).
+
+    `shared` are controller tags from `--tags FILE.L5X` (declared first, checked as L5X data).
+    """
+    types = types or TypeTable()
+    diags: list[Diagnostic] = []
+    model = ProgramModel(name, routines, types, main=routines[0].name if routines else "")
+    udts = declare_types(types, [(td, r.path) for r in routines for td in r.types], diags)
+    define_members(types, udts, diags)
+    if shared is not None:
+        declare_tags(model, shared[0], shared[1], diags)
+        model.extra["tag_data"] = shared[1]
     for r in routines:
-        for d in r.decls:
-            t = resolve_typeref(types, d.type, r.path, diags)
-            for tname, tspan in d.names:
-                key = tname.upper()
-                if key in model.tags:
-                    prev = model.tags[key]
-                    diags.append(
-                        diag("E117", f"tag '{tname}' is already declared at line {prev.span.line}", r.path, tspan)
-                    )
-                    continue
-                if t is not None:
-                    model.tags[key] = Tag(tname, t, tspan, r.path, d.init, init_path=r.path)
+        declare_tags(model, r.decls, r.path, diags)
     return model, diags

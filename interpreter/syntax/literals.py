@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 _SUFFIX_TYPES = {"": "DINT", "U": "UDINT", "L": "LINT", "UL": "ULINT"}
-_ESCAPES = {"$": b"$", "'": b"'", '"': b'"', "L": b"\n", "N": b"\n", "R": b"\r", "T": b"\t", "P": b"\f"}
+_ESCAPES = {"$": "$", "'": "'", '"': '"', "L": "\n", "N": "\n", "R": "\r", "T": "\t", "P": "\f"}
 
 
 def parse_number(text: str) -> tuple[int | float, str]:
@@ -43,26 +43,35 @@ def parse_number(text: str) -> tuple[int | float, str]:
 
 
 def parse_string(text: str) -> bytes:
-    """Decode a quoted ST string with `$` escapes (`$$ $' $L $N $R $T $P $hh`)."""
+    """Decode a quoted ST string with `$` escapes (`$$ $' $L $N $R $T $P $hh`) to its bytes."""
+    return decode_text(text).encode("latin-1", "replace")
+
+
+def decode_text(text: str) -> str:
+    """The text of a quoted Logix string (`'...'` or `"..."`) with its `$` escapes decoded.
+
+    `$hh` gives the character with that code, so encoding the result as latin-1 yields the
+    string's bytes; characters beyond latin-1 stay intact (ladder rung comments).
+    """
     body = text[1:-1]
-    out = bytearray()
+    out: list[str] = []
     i = 0
     while i < len(body):
         ch = body[i]
         if ch == "$" and i + 1 < len(body):
             nxt = body[i + 1]
             if nxt.upper() in _ESCAPES:
-                out += _ESCAPES[nxt.upper()]
+                out.append(_ESCAPES[nxt.upper()])
                 i += 2
                 continue
             hexpart = body[i + 1 : i + 3]
             if len(hexpart) == 2 and all(c in "0123456789abcdefABCDEF" for c in hexpart):
-                out.append(int(hexpart, 16))
+                out.append(chr(int(hexpart, 16)))
                 i += 3
                 continue
-            out += nxt.encode("latin-1", "replace")
+            out.append(nxt)
             i += 2
             continue
-        out += ch.encode("latin-1", "replace")
+        out.append(ch)
         i += 1
-    return bytes(out)
+    return "".join(out)

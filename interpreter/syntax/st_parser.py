@@ -18,6 +18,7 @@ from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .comments import line_starts, strip_comments
 from .literals import parse_number, parse_string
+from .st_lexer import SlowPath, StLexer, fast_parse
 
 MAX_ERRORS = 25
 
@@ -36,7 +37,15 @@ def _span(x: object) -> n.Span:
 
 
 def _join(first: object, last: object) -> n.Span:
-    return _span(first).to(_span(last))
+    # Hot path of AST building: no intermediate Span for the two ends.
+    if isinstance(first, Token):
+        line, col = first.line, first.column
+    else:
+        line, col = first.span[:2]  # type: ignore[attr-defined]
+    if isinstance(last, Token):
+        return n.Span(line, col, last.end_line, last.end_column)  # type: ignore[arg-type]
+    end = last.span  # type: ignore[attr-defined]
+    return n.Span(line, col, end[2], end[3])  # type: ignore[arg-type]
 
 
 def _body(children: list) -> list:
@@ -101,7 +110,7 @@ class AstBuilder(Transformer):
         return n.TypeRef(str(c[0]).upper(), [], tspan(c[0]))
 
     def type_logix_array(self, c: list) -> n.TypeRef:
-        dims = [(0, parse_number(str(t))[0] - 1) for t in c[1:]]  # type: ignore[operator]
+        dims = [(0, int(parse_number(str(t))[0]) - 1) for t in c[1:]]
         return n.TypeRef(str(c[0]).upper(), dims, _join(c[0], c[-1]))
 
     def type_iec_array(self, c: list) -> n.TypeRef:
@@ -257,7 +266,7 @@ class AstBuilder(Transformer):
 def _parser() -> Lark:
     grammar = (Path(__file__).parent / "st.lark").read_text()
     return Lark(
-        grammar, parser="lalr", lexer="contextual", transformer=AstBuilder(),
+        grammar, parser="lalr", lexer=StLexer, transformer=AstBuilder(),
         maybe_placeholders=True, start=["start", "expr"],
     )
 
@@ -265,7 +274,8 @@ def _parser() -> Lark:
 def parse_expression(text: str) -> n.Expr:
     """Parse one expression (`--watch`, `--set`); raises ValueError with a one-line reason."""
     try:
-        return _parser().parse(text, start="expr")  # type: ignore[no-any-return]
+        expr: n.Expr = _parser().parse(text, start="expr")  # type: ignore[assignment]
+        return expr
     except UnexpectedInput as e:
         raise ValueError(f"cannot parse '{text}' at column {getattr(e, 'column', '?')}") from None
 
@@ -362,7 +372,7 @@ def _find_open(stack: list, kind: str) -> Token | None:
 def _at(tok: Token) -> n.Span:
     if tok.line is None:
         return n.Span(1, 1, 1, 1)
-    return n.Span(tok.line, tok.column, tok.end_line or tok.line, tok.end_column or tok.column + 1)  # type: ignore[arg-type]
+    return n.Span(tok.line, tok.column or 1, tok.end_line or tok.line, tok.end_column or (tok.column or 1) + 1)
 
 
 def _blank(text: str, start: int, end: int) -> str:
@@ -385,7 +395,12 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
     pending_closers: dict[str, int] = {}
     seen: set[tuple[str, int, int]] = set()
     result = None
-    for _ in range(MAX_ERRORS + 1):
+    try:
+        result = fast_parse(_parser(), work, "start")
+        attempts = 0  # well-formed text: no recovery passes needed
+    except SlowPath:
+        attempts = MAX_ERRORS + 1
+    for _ in range(attempts):
         rec = _Recovery(path, pending_closers)
         try:
             result = _parser().parse(work, start="start", on_error=rec.on_error)
@@ -398,20 +413,20 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
                 diags.append(d)
         if rec.fatal is None:
             break
-        e = rec.fatal
-        if isinstance(e, UnexpectedCharacters):
-            off = _offset(work, starts, e.line, e.column)
+        err = rec.fatal
+        if isinstance(err, UnexpectedCharacters):
+            off = _offset(work, starts, err.line, err.column)
             ch = work[off] if off < len(work) else ""
-            sp = n.Span(e.line, e.column, e.line, e.column + 1)
+            sp = n.Span(err.line, err.column, err.line, err.column + 1)
             code, msg = ("S003", "string is not terminated") if ch in "'\"" else ("S004", f"unexpected character {ch!r}")
-            if (code, e.line, e.column) not in seen:
-                seen.add((code, e.line, e.column))
+            if (code, err.line, err.column) not in seen:
+                seen.add((code, err.line, err.column))
                 diags.append(diag(code, msg, path, sp))
             end = work.find("\n", off) if ch in "'\"" else off + 1
             work = _blank(work, off, end if end > off else len(work))
             continue
-        assert isinstance(e, UnexpectedToken)
-        tok = e.token
+        assert isinstance(err, UnexpectedToken)
+        tok = err.token
         if tok.type == "$END":
             key = ("S001", -1, -1)
             if key not in seen:
@@ -426,7 +441,7 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
             if key not in seen:
                 seen.add(key)  # type: ignore[arg-type]
                 diags.append(
-                    diag("S001", f"unexpected {_describe(tok)}, expected {_expected(set(e.expected))}", path, _at(tok))
+                    diag("S001", f"unexpected {_describe(tok)}, expected {_expected(set(err.expected))}", path, _at(tok))
                 )
         start = _statement_start(work, off)
         semi = work.find(";", off)
@@ -440,7 +455,8 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
                 pending_closers[closer] = pending_closers.get(closer, 0) + opened
         work = _blank(work, start, end)
     else:
-        result = None
+        if attempts:
+            result = None
     routine = n.Routine(name or Path(path).stem, "st", path, comments=stripped.comments)
     if result is not None:
         prog_name, (types, decls), body, span = result

@@ -16,6 +16,7 @@ from ..compiler.bytecode import Code, Ins, Op
 from ..instructions.registry import lookup, lookup_prescan
 from ..semantics.types import BOOL, LINT, LREAL, DataType, Elementary, Kind, StructType
 from .context import ExecContext, MajorFault
+from .ladder_helpers import copy_into, return_value, returned, store_flags
 from .refs import ArrayRef, BitRef, Ref
 from .values import f32, real_to_int, set_string, string_text, wrap
 
@@ -113,7 +114,12 @@ HELPERS: dict[str, Any] = {
     "_ipow": _ipow, "_fpow": _fpow, "_setbit": _setbit, "_sset": _sset, "_scmp": _scmp,
     "_f32": f32, "_r2i": _r2i, "_wrap": wrap, "_Ref": Ref, "_BitRef": BitRef,
     "_ArrayRef": ArrayRef, "MajorFault": MajorFault,
+    "_stf": store_flags, "_rvn": returned, "_rv": return_value, "_cpy": copy_into,
 }
+
+_TRUE = ("1", "True")
+_MAX_DEPTH = 40  # CPython's parser refuses about 200 nested parentheses
+_FALSE = ("0", "False")
 
 
 # ------------------------------------------------------------------ translation
@@ -121,6 +127,8 @@ HELPERS: dict[str, Any] = {
 class _Val:
     expr: str
     type: DataType | None
+    chain: str = ""  # "and"/"or": expr is one flat parenthesised chain of that operator (LAND/LOR)
+    depth: int = 0  # parentheses nesting added by LAND/LOR (kept below Python's parser limit)
 
 
 @dataclass(slots=True)
@@ -187,6 +195,7 @@ class Translator:
         self.stack: list[_Val | _Place] = []
         self.block_has_code: list[bool] = []
         self.tmp = 0
+        self.edges_name: str | None = None
 
     def const_name(self, value: object) -> str:
         name = f"_k{len(self.ns)}"
@@ -244,7 +253,8 @@ class Translator:
         return "\n".join(head + self.lines + tail) + "\n"
 
     def op(self, ins: Ins) -> None:  # noqa: C901
-        op, arg, site = ins.op, ins.arg, ins.site
+        op, site = ins.op, ins.site
+        arg: Any = ins.arg
         st = self.stack
         if op is Op.TAG:
             st.append(_Place("T", str(arg)))
@@ -268,9 +278,9 @@ class Translator:
             st.append(_Place(p.container, p.key, str(bit), owner))
         elif op is Op.IBIT:
             owner = arg
-            b = self.pop_val().expr
+            bit_expr = self.pop_val().expr
             p = self.pop_place()
-            st.append(_Place(p.container, p.key, self.checked(b, owner.bits, site), owner))  # type: ignore[union-attr]
+            st.append(_Place(p.container, p.key, self.checked(bit_expr, owner.bits, site), owner))
         elif op is Op.CONST:
             value, t = arg  # type: ignore[misc]
             if isinstance(t, Elementary) and t.kind is Kind.REAL and t.bits == 32 and isinstance(value, int | float):
@@ -298,9 +308,11 @@ class Translator:
         elif op is Op.STORE:
             v = self.pop_val()
             p = self.pop_place()
-            t: DataType = arg  # type: ignore[assignment]
-            if isinstance(t, StructType):
+            t = arg
+            if isinstance(t, StructType) and t.is_string:
                 self.line(f"_sset({p.container}[{p.key}], {v.expr})")
+            elif not isinstance(t, Elementary):  # structure or array parameter: copy the value
+                self.line(f"_cpy({p.container}[{p.key}], {v.expr})")
             elif p.bit is not None:
                 pt = p.owner
                 assert pt is not None
@@ -346,12 +358,12 @@ class Translator:
         elif op is Op.BIN:
             self.binary(arg, site)  # type: ignore[arg-type]
         elif op is Op.CMP:
-            cmp, t = arg  # type: ignore[misc]
+            rel, t = arg
             b, a = self.pop_val(), self.pop_val()
             if isinstance(t, StructType):
-                st.append(_Val(f"(_scmp({a.expr}, {b.expr}) {_PY_CMP[cmp]} 0)", BOOL))
+                st.append(_Val(f"(_scmp({a.expr}, {b.expr}) {_PY_CMP[rel]} 0)", BOOL))
             else:
-                st.append(_Val(f"({a.expr} {_PY_CMP[cmp]} {b.expr})", BOOL))
+                st.append(_Val(f"({a.expr} {_PY_CMP[rel]} {b.expr})", BOOL))
         elif op is Op.FN:
             key, t = arg  # type: ignore[misc]
             v = self.pop_val()
@@ -360,12 +372,14 @@ class Translator:
             st.append(_Val(conv_expr(call, _result_src(t), t), t))
         elif op is Op.CALL or op is Op.PRESCAN:
             key, count = arg[0], arg[1]  # type: ignore[index]
+            rung = bool(arg[2]) if len(arg) > 2 else True  # type: ignore[arg-type]
             args = [self.pop_val().expr for _ in range(count)][::-1]
             fn = self.impl(key, prescan=op is Op.PRESCAN)
             self.line(f"ctx.site = {site}")
-            self.line(f"{fn}(ctx, True{''.join(', ' + a for a in args)})")
+            self.line(f"{fn}(ctx, {rung}{''.join(', ' + a for a in args)})")
         elif op is Op.JSR:
             self.line(f"ctx.site = {site}")
+            self.line("ctx.rv = None")
             self.line("ctx.steps += _s; _s = 0")
             self.line(f"_R[{str(arg).upper()!r}](T, ctx)")
             self.line("_W = ctx.budget - ctx.steps")
@@ -383,21 +397,87 @@ class Translator:
         elif op is Op.BREAK_IFNOT:
             self.line(f"if not {self.pop_val().expr}: break")
         elif op is Op.TSET:
-            self.line(f"_v{arg} = {self.pop_val().expr}")
+            expr = self.pop_val().expr
+            if expr != f"_v{arg}":
+                self.line(f"_v{arg} = {expr}")
         elif op is Op.TGET:
             k, t = arg  # type: ignore[misc]
             st.append(_Val(f"_v{k}", t))
         elif op is Op.STEP:
             count, in_loop = arg  # type: ignore[misc]
-            self.line(f"_s += {count}")
+            if count:
+                self.line(f"_s += {count}")
             if in_loop:
                 self.line(f"if _s > _W: _wd({site})")
-        else:  # pragma: no cover - every op is handled above
+        else:
+            self.ladder_op(op, arg, site)
+
+    def ladder_op(self, op: Op, arg: Any, site: int) -> None:  # noqa: C901
+        """Ops added for ladder rungs, subroutine parameters and early returns."""
+        st = self.stack
+        if op is Op.POP:
+            st.pop()
+        elif op is Op.LAND or op is Op.LOR:
+            b, a = self.pop_val(), self.pop_val()
+            v = _rung_logic(a, b, "and" if op is Op.LAND else "or")
+            if v.depth > _MAX_DEPTH:  # a very long or deep rung: evaluate the part so far now
+                t = self.fresh()
+                self.line(f"{t} = {v.expr}")
+                v = _Val(t, BOOL)
+            st.append(v)
+        elif op is Op.RCALL:
+            key, count = arg
+            args = [self.pop_val().expr for _ in range(count)][::-1]
+            rung = self.pop_val().expr
+            if not _is_simple(rung):
+                r = self.fresh()
+                self.line(f"{r} = {rung}")
+                rung = r
+            flag = "True" if rung in _TRUE else "False" if rung in _FALSE else f"(True if {rung} else False)"
+            fn = self.impl(key)
+            res = self.fresh()
+            self.line(f"ctx.site = {site}")
+            self.line(f"{res} = {fn}(ctx, {flag}{''.join(', ' + a for a in args)})")
+            st.append(_Val(f"({rung} if {res} is None else {res})", BOOL))
+        elif op is Op.EDGE:
+            if self.edges_name is None:
+                self.edges_name = self.const_name(self.code.edges)
+            st.append(_Place(self.edges_name, str(arg)))
+        elif op is Op.STOREF:
+            v = self.pop_val()
+            p = self.pop_place()
+            tname = self.const_name(arg)
+            self.line(f"ctx.site = {site}")  # an overflow records minor fault 4/4 here
+            if p.bit is not None:
+                pt = p.owner
+                assert pt is not None
+                self.line(
+                    f"{p.container}[{p.key}] = _setbit({p.container}[{p.key}], {p.bit}, _stf(ctx, {v.expr}, {tname}), {pt.bits}, {pt.signed})"
+                )
+            else:
+                self.line(f"{p.container}[{p.key}] = _stf(ctx, {v.expr}, {tname})")
+        elif op is Op.SETRV:
+            vals = [self.pop_val().expr for _ in range(arg)][::-1]
+            self.line(f"ctx.rv = [{', '.join(vals)}]")
+        elif op is Op.RETURN:
+            self.line("return")
+        elif op is Op.FAULT:
+            ftype, code, message = arg
+            self.line(f"raise MajorFault({ftype}, {code}, {message!r}, {site})")
+        elif op is Op.RETN:
+            st.append(_Val(f"_rvn(ctx, {arg}, {site})", BOOL))
+        elif op is Op.RETV:
+            i, t = arg
+            st.append(_Val(f"_rv(ctx, {i}, {self.const_name(t)})", t))
+        else:  # pragma: no cover - every op is handled above  # pragma: no cover - every op is handled above
             raise AssertionError(op)
 
     def impl(self, key: str, prescan: bool = False) -> str:
-        name = key.split("@")[0]
-        lang = "rll" if key.endswith("@rll") else "st"
+        project = self.ns.get("_AOI_PRE" if prescan else "_AOI")  # a project's add-on instructions
+        if project is not None and key in project:
+            return self.const_name(project[key])
+        name, _, langs = key.partition("@")
+        lang = self.code.language if self.code.language in langs.split("+") else langs.split("+")[0]
         fn = lookup_prescan(name, lang) if prescan else lookup(name, lang)
         if fn is None:
             raise LookupError(f"no implementation for {key}")
@@ -438,12 +518,24 @@ class Translator:
         elif op == "MOD" and y.isdigit() and int(y) > 0:
             # Constant positive divisor: no fault, |result| < divisor so no wrap; the sign
             # follows the dividend (A - TRUNC(A/B)*B), unlike Python's %.
-            a = self.fresh()
-            st.append(_Val(f"({a} % {y} if ({a} := {x}) >= 0 else -(-{a} % {y}))", t))
+            tmp = self.fresh()
+            st.append(_Val(f"({tmp} % {y} if ({tmp} := {x}) >= 0 else -(-{tmp} % {y}))", t))
         elif op == "MOD":
             st.append(_Val(f"_imod(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
         elif op == "**":
             st.append(_Val(f"_ipow(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
+
+
+def _rung_logic(a: _Val, b: _Val, word: str) -> _Val:
+    """`a AND b` / `a OR b` on rung conditions: constant ends folded, chains kept flat."""
+    absorbing, neutral = (_FALSE, _TRUE) if word == "and" else (_TRUE, _FALSE)
+    if a.expr in neutral:
+        return b
+    if b.expr in neutral or a.expr in absorbing:
+        return a  # b is pure: not evaluating it changes nothing
+    if a.chain == word:  # (x and y) and b -> (x and y and b)
+        return _Val(f"{a.expr[:-1]} {word} {b.expr})", BOOL, word, max(a.depth, b.depth + 1))
+    return _Val(f"({a.expr} {word} {b.expr})", BOOL, word, max(a.depth, b.depth) + 1)
 
 
 def _result_src(t: DataType) -> DataType:

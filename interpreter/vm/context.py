@@ -40,6 +40,8 @@ class ExecContext:
     motion: Any = None  # the motion runtime (interpreter.runtime.motion), when present
     program: Any = None  # the loaded program (tags, types, routines)
     status: dict[str, int] = field(default_factory=dict)  # S:N S:Z S:V S:C ...
+    rv: list[Any] | None = None  # values the last RET handed back to its JSR (None: no RET)
+    system: dict[str, Any] = field(default_factory=dict)  # attributes set by SSV (clock offset ...)
 
     def minor(self, type_: int, code: int, message: str, site: int | None = None) -> None:
         where = self.site if site is None else site

@@ -64,7 +64,7 @@ def default_value(t: DataType, init: object = None) -> object:
         return 0.0 if t.kind is Kind.REAL else 0
     if isinstance(t, ArrayType):
         return [default_value(t.elem) for _ in range(t.size)]
-    values = []
+    values: list[object] = []
     for name, mt in t.members:
         d = t.defaults.get(name.upper())
         if d is not None and isinstance(mt, Elementary):

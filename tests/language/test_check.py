@@ -62,6 +62,7 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "W201": ("FOR i := 0 TO 4 DO\n  i := 5;\nEND_FOR;\n", "FOR i := 0 TO 4 DO\n  x := i;\nEND_FOR;\n"),
     "W203": ("IF b THEN MSO(ax, mc); MSF(ax, mc); END_IF;\n", "IF b THEN MSO(ax, mc); MSF(ax, mc2); END_IF;\n"),
     "W204": ("MSO(ax, mc);\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
+    "U303": ("GSV(TASK, THIS, Priority, x);\n", "GSV(TASK, THIS, Rate, x);\n"),
 }
 
 # U304 (recognised, not executable yet) depends on which instructions are implemented today;
@@ -104,7 +105,7 @@ def test_clean_twin(st, code: str) -> None:
 
 def test_every_st_code_has_a_fixture() -> None:
     # codes that only ladder or L5X input can produce (or need a feature beyond ST files)
-    not_st = {"S006", "S007", "E128", "E129", "W202", "U301", "U302", "U303", "U304"}
+    not_st = {"S006", "S007", "E128", "E129", "E131", "W202", "U301", "U302", "U304", "U305"}
     assert set(REGISTRY) - not_st - set(FIXTURES) == set()
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import math
 
 import pytest
 
@@ -266,3 +267,47 @@ def test_large_generated_program(st) -> None:
     assert "Traceback" not in r.err
     # n counts every generated line; a[0] gets lines 0, 100, 200, ... -> ceil(count / 100)
     assert r.tags == {"n": count, "a[0]": (count + 99) // 100}
+
+
+RANGES = "VAR s : SINT; u : USINT; b : BOOL; r : REAL; END_VAR s := s; u := u;"
+
+
+@pytest.mark.parametrize(
+    ("setting", "fragment"),
+    [
+        ("s=128", "-128..127"),  # SINT is 8-bit signed: 127 is the largest
+        ("s=-129", "-128..127"),
+        ("u=256", "0..255"),  # USINT: 2**8 - 1 = 255
+        ("u=-1", "0..255"),
+        ("b=2", "BOOL"),
+        ("s='x'", "string"),
+    ],
+)
+def test_set_rejects_values_that_do_not_fit(st, setting: str, fragment: str) -> None:
+    r = st.run(RANGES, "s", args=("--set", setting))
+    _one_line_error(r)
+    assert fragment in r.err
+
+
+def test_set_accepts_the_range_ends(st) -> None:
+    t = st.tags(RANGES, "s", "u", "r", args=("--set", "s=-128", "--set", "u=255", "--set", "r=-1.5"))
+    assert t == {"s": -128, "u": 255, "r": -1.5}
+
+
+def test_json_multi_dimensional_arrays_nest_by_dimension(st) -> None:
+    # m : DINT[2,3] holds m[i,j] = 10*i + j; JSON nests the last subscript innermost.
+    src = """VAR m : DINT[2,3]; c : DINT[2,2,2]; i, j : DINT; END_VAR
+    FOR i := 0 TO 1 DO FOR j := 0 TO 2 DO m[i,j] := 10*i + j; END_FOR; END_FOR;
+    c[1,0,1] := 7;"""
+    t = st.tags(src, "m", "c")
+    assert t["m"] == [[0, 1, 2], [10, 11, 12]]
+    assert t["c"] == [[[0, 0], [0, 0]], [[0, 7], [0, 0]]]
+
+
+def test_json_real_infinity_and_nan(st) -> None:
+    # 3.0e38 * 10.0 exceeds the float32 maximum (about 3.4e38) -> +inf; inf - inf -> NaN.
+    src = "VAR big, inf, nan : REAL; END_VAR big := 3.0e38; inf := big * 10.0; nan := inf - inf;"
+    r = st.run(src, "inf", "nan")
+    assert r.code == 0
+    assert '"inf": Infinity' in r.out and '"nan": NaN' in r.out  # docs/decisions/0007
+    assert r.tags["inf"] == math.inf and math.isnan(r.tags["nan"])

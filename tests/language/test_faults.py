@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import time
 
@@ -36,7 +37,7 @@ def test_subscript_fault_in_multi_dimensional_store(st) -> None:
     f = r.json["faults"][-1]
     # j = 3 is outside 0..2 of the second dimension; located at 'm[1, j]' (line 3, col 1)
     assert (f["type"], f["code"], f["major"], f["line"], f["column"]) == (4, 20, True, 3, 1)
-    assert r.json["tags"]["m"] == [0] * 6
+    assert r.json["tags"]["m"] == [[0, 0, 0], [0, 0, 0]]
 
 
 def test_each_dimension_checked_separately(st) -> None:
@@ -48,7 +49,7 @@ def test_each_dimension_checked_separately(st) -> None:
     # m[1,-1] flattens to 1*3 - 1 = 2, inside the storage; it must still fault (j < 0)
     assert r.code == 3
     assert r.json["faults"][-1]["code"] == 20
-    assert r.json["tags"]["m"] == [0] * 6
+    assert r.json["tags"]["m"] == [[0, 0, 0], [0, 0, 0]]
 
 
 def test_endless_loop_watchdog(st) -> None:
@@ -127,3 +128,14 @@ def test_minor_fault_in_text_output(st) -> None:
     assert r.code == 0
     assert "minor fault type 4 code 4" in r.err
     assert "a" in r.out and "1" in r.out  # the table: a = Source A = 1
+
+
+def test_endless_jsr_recursion_is_a_stack_overflow_fault(st) -> None:
+    # main calls itself through sub: Logix faults with type 4 code 84 (stack overflow).
+    main = st.write("main.st", "VAR depth : DINT; END_VAR depth := depth + 1; JSR(sub);")
+    sub = st.write("sub.st", "JSR(main);")
+    r = st.cli("run", str(main), str(sub), "--scans", "1", "--json", "--watch", "depth")
+    assert r.code == 3, r.err
+    fault = json.loads(r.out)["faults"][-1]
+    assert (fault["type"], fault["code"], fault["major"]) == (4, 84, True)
+    assert fault["file"].endswith(("main.st", "sub.st"))

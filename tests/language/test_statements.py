@@ -183,14 +183,14 @@ def test_three_dimensional_arrays_row_major(st) -> None:
     END_FOR;
     """
     t = st.tags(src, "a", "a[1,2,3]", "b[1,0,2]", "b")
-    # row-major: flat index = i*12 + j*4 + k
-    assert len(t["a"]) == 24  # 2 * 3 * 4
-    assert t["a"][13] == 101  # 13 = 1*12 + 0*4 + 1 -> i=1, j=0, k=1
-    assert t["a"][6] == 12  # 6 = 0*12 + 1*4 + 2 -> i=0, j=1, k=2
-    assert t["a"][23] == 123  # last element i=1, j=2, k=3
+    # JSON nests [i][j][k] (docs/decisions/0007): 2 lists of 3 lists of 4 values
+    assert [len(t["a"]), len(t["a"][0]), len(t["a"][0][0])] == [2, 3, 4]
+    assert t["a"][1][0][1] == 101  # i=1, j=0, k=1 -> 100 + 0 + 1
+    assert t["a"][0][1][2] == 12  # i=0, j=1, k=2 -> 0 + 10 + 2
+    assert t["a"][1][2][3] == 123  # last element
     assert t["a[1,2,3]"] == 123
     assert t["b[1,0,2]"] == 204  # (100 + 0 + 2) * 2
-    assert t["b"][4] == 20  # 4 -> i=0, j=1, k=0 -> 10 * 2
+    assert t["b"][0][1][0] == 20  # i=0, j=1, k=0 -> 10 * 2
 
 
 def test_array_initialiser_and_variable_subscript(st) -> None:

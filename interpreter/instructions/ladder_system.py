@@ -1,0 +1,230 @@
+"""GSV / SSV: controller object attributes a simulator can honour (decision 0030).
+
+ClassName and AttributeName arrive as the private numbers of the catalog enumerations
+(stdlib/instructions/special.toml); InstanceName is not needed by any simulated attribute.
+Dest (GSV) and Source (SSV) arrive as raw memory from the element named, so a DINT[7] is
+written from `dt[0]` on, and a 64-bit value goes into a LINT or into two DINTs (low word
+first), as on the controller.
+
+Simulated attributes:
+- WALLCLOCKTIME: the clock reads EPOCH (2024-01-01 00:00:00 UTC) plus the virtual time, so
+  runs are reproducible. CurrentValue (LINT, µs since 1970-01-01 UTC), DateTime and
+  LocalDateTime (DINT[7]: year, month, day, hour, minute, second, µs), UTCOffset (LINT µs,
+  default 0), DSTAdjustment (INT minutes, default 0) and ApplyDST (SINT, default 0). SSV
+  of any of them is kept for the rest of the run: setting the time moves the clock, which
+  then keeps running with the virtual time. LocalDateTime = UTC + UTCOffset (+ the DST
+  adjustment while ApplyDST is set).
+- CST CurrentValue: µs since the controller started (the virtual time).
+- TASK: Rate, LastScanTime and MaxScanTime are the scan period in µs (every simulated scan
+  takes one period); Watchdog is the watchdog budget expressed as time (5,000,000
+  statements = 500 ms, so budget / 10 µs); StartTime is CurrentValue at the start of the
+  scan; OverlapCount is 0. SSV of MaxScanTime / OverlapCount (a reset) is accepted.
+- PROGRAM: LastScanTime and MaxScanTime as for the task; SSV of MaxScanTime is accepted.
+- FAULTLOG: MinorEvents counts the minor faults recorded so far, MinorFaultBits has bit T
+  set for each fault type T among them; SSV of either (any value) clears them, as the usual
+  "clear minor faults" rung does. Major faults stop a run, so MajorEvents/MajorFaultBits
+  read 0.
+Everything else is reported by `check` as U303 (see `unsupported`) and has no effect.
+"""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime, timedelta
+
+from stdlib import catalog
+
+from ..semantics.types import Elementary
+from ..vm.context import ExecContext
+from ..vm.values import convert
+from .file_ops import _block
+from .registry import implements
+
+EPOCH = datetime(2024, 1, 1, tzinfo=UTC)
+UNIX = datetime(1970, 1, 1, tzinfo=UTC)
+EPOCH_US = (EPOCH - UNIX) // timedelta(microseconds=1)
+
+# (class, attribute) -> value shape: "LINT" (64-bit), "DINT7", or a scalar type name
+READABLE: dict[tuple[str, str], str] = {
+    ("WALLCLOCKTIME", "CURRENTVALUE"): "LINT",
+    ("WALLCLOCKTIME", "DATETIME"): "DINT7",
+    ("WALLCLOCKTIME", "LOCALDATETIME"): "DINT7",
+    ("WALLCLOCKTIME", "UTCOFFSET"): "LINT",
+    ("WALLCLOCKTIME", "DSTADJUSTMENT"): "INT",
+    ("WALLCLOCKTIME", "APPLYDST"): "SINT",
+    ("CST", "CURRENTVALUE"): "LINT",
+    ("TASK", "RATE"): "DINT",
+    ("TASK", "LASTSCANTIME"): "DINT",
+    ("TASK", "MAXSCANTIME"): "DINT",
+    ("TASK", "WATCHDOG"): "DINT",
+    ("TASK", "STARTTIME"): "LINT",
+    ("TASK", "OVERLAPCOUNT"): "DINT",
+    ("PROGRAM", "LASTSCANTIME"): "DINT",
+    ("PROGRAM", "MAXSCANTIME"): "DINT",
+    ("FAULTLOG", "MINOREVENTS"): "INT",
+    ("FAULTLOG", "MINORFAULTBITS"): "DINT",
+    ("FAULTLOG", "MAJOREVENTS"): "INT",
+    ("FAULTLOG", "MAJORFAULTBITS"): "DINT",
+}
+WRITABLE: frozenset[tuple[str, str]] = frozenset(
+    {
+        ("WALLCLOCKTIME", "CURRENTVALUE"), ("WALLCLOCKTIME", "DATETIME"),
+        ("WALLCLOCKTIME", "LOCALDATETIME"), ("WALLCLOCKTIME", "UTCOFFSET"),
+        ("WALLCLOCKTIME", "DSTADJUSTMENT"), ("WALLCLOCKTIME", "APPLYDST"),
+        ("TASK", "MAXSCANTIME"), ("TASK", "OVERLAPCOUNT"), ("PROGRAM", "MAXSCANTIME"),
+        ("FAULTLOG", "MINOREVENTS"), ("FAULTLOG", "MINORFAULTBITS"),
+    }
+)
+
+
+def unsupported(class_name: str, attribute: str, write: bool) -> bool:
+    """True when GSV (write=False) / SSV (write=True) of this pair is not simulated (U303)."""
+    key = (class_name.upper(), attribute.upper())
+    return key not in (WRITABLE if write else READABLE)
+
+
+def attribute_names(cls: int, attr: int) -> tuple[str, str]:
+    cat = catalog()
+    c = cat.enum("GSV_ClassName").by_value(int(cls))
+    a = cat.enum("GSV_AttributeName").by_value(int(attr))
+    return (c.text.upper() if c else "", a.text.upper() if a else "")
+
+
+# ------------------------------------------------------------------ clock
+def _utc_us(ctx: ExecContext, at_ms: float | None = None) -> int:
+    ms = ctx.now_ms if at_ms is None else at_ms
+    return EPOCH_US + round(ms * 1000) + int(ctx.system.get("clock_offset_us", 0))
+
+
+def _local_shift_us(ctx: ExecContext) -> int:
+    dst = int(ctx.system.get("dst_minutes", 0)) if ctx.system.get("apply_dst", 0) else 0
+    return int(ctx.system.get("utc_offset_us", 0)) + dst * 60_000_000
+
+
+def _to_fields(us: int) -> list[int]:
+    t = UNIX + timedelta(microseconds=us)
+    return [t.year, t.month, t.day, t.hour, t.minute, t.second, t.microsecond]
+
+
+def _from_fields(words: list[int]) -> int | None:
+    try:
+        y, mo, d, h, mi, s, us = (int(w) for w in words[:7])
+        t = datetime(y, mo, d, h, mi, s, us, tzinfo=UTC)
+    except (ValueError, TypeError, OverflowError):  # also fewer than 7 words
+        return None  # not a valid date: the clock is left alone
+    return (t - UNIX) // timedelta(microseconds=1)
+
+
+def _set_clock(ctx: ExecContext, utc_us: int) -> None:
+    ctx.system["clock_offset_us"] = utc_us - EPOCH_US - round(ctx.now_ms * 1000)
+
+
+# ------------------------------------------------------------------ fault log
+def _minor_by_type(ctx: ExecContext) -> dict[int, int]:
+    counts: dict[int, int] = {}
+    for f in ctx.minor_faults.values():
+        counts[f.type] = counts.get(f.type, 0) + f.count
+    return counts
+
+
+def _minor_since_clear(ctx: ExecContext) -> dict[int, int]:
+    base: dict[int, int] = ctx.system.get("minor_base", {})
+    return {t: n - base.get(t, 0) for t, n in _minor_by_type(ctx).items() if n > base.get(t, 0)}
+
+
+# ------------------------------------------------------------------ values
+def _read_value(ctx: ExecContext, key: tuple[str, str]) -> int | list[int]:
+    cls, attr = key
+    period_us = round(ctx.scan_period_ms * 1000)
+    if cls == "WALLCLOCKTIME":
+        if attr == "CURRENTVALUE":
+            return _utc_us(ctx)
+        if attr == "DATETIME":
+            return _to_fields(_utc_us(ctx))
+        if attr == "LOCALDATETIME":
+            return _to_fields(_utc_us(ctx) + _local_shift_us(ctx))
+        if attr == "UTCOFFSET":
+            return int(ctx.system.get("utc_offset_us", 0))
+        if attr == "DSTADJUSTMENT":
+            return int(ctx.system.get("dst_minutes", 0))
+        return int(ctx.system.get("apply_dst", 0))
+    if cls == "CST":
+        return round(ctx.now_ms * 1000)
+    if cls == "FAULTLOG":
+        since = _minor_since_clear(ctx)
+        if attr == "MINOREVENTS":
+            return sum(since.values())
+        if attr == "MINORFAULTBITS":
+            bits = 0
+            for t in since:
+                bits |= 1 << t
+            return bits
+        return 0  # MAJOREVENTS / MAJORFAULTBITS: a major fault ends the run
+    if attr == "WATCHDOG":
+        return ctx.budget // 10
+    if attr == "STARTTIME":
+        return _utc_us(ctx)
+    if attr == "OVERLAPCOUNT":
+        return 0
+    return period_us  # RATE, LASTSCANTIME, MAXSCANTIME
+
+
+def _write_value(ctx: ExecContext, key: tuple[str, str], value: int | list[int]) -> None:
+    cls, attr = key
+    if cls == "WALLCLOCKTIME":
+        if attr == "CURRENTVALUE":
+            _set_clock(ctx, int(value))  # type: ignore[arg-type]
+        elif attr in ("DATETIME", "LOCALDATETIME"):
+            us = _from_fields(value if isinstance(value, list) else [value])
+            if us is not None:
+                _set_clock(ctx, us - (_local_shift_us(ctx) if attr == "LOCALDATETIME" else 0))
+        elif attr == "UTCOFFSET":
+            ctx.system["utc_offset_us"] = int(value)  # type: ignore[arg-type]
+        elif attr == "DSTADJUSTMENT":
+            ctx.system["dst_minutes"] = int(value)  # type: ignore[arg-type]
+        else:
+            ctx.system["apply_dst"] = int(value)  # type: ignore[arg-type]
+    elif cls == "FAULTLOG":
+        ctx.system["minor_base"] = _minor_by_type(ctx)
+    # TASK/PROGRAM MaxScanTime, OverlapCount: every simulated scan takes one period, so a
+    # reset has nothing to clear.
+
+
+# ------------------------------------------------------------------ memory access
+def _put(dest: object, shape: str, value: int | list[int]) -> None:
+    elements, start, etype, avail = _block(dest, "Dest")
+    if not isinstance(etype, Elementary) or avail <= 0:
+        return
+    if isinstance(value, int) and shape == "LINT" and etype.bits < 64:
+        value = [value & 0xFFFFFFFF, (value >> 32) & 0xFFFFFFFF]  # two DINTs, low word first
+    words = value if isinstance(value, list) else [value]
+    for i, w in enumerate(words[:avail]):
+        elements[start + i] = convert(w, etype)
+
+
+def _get(source: object, shape: str) -> int | list[int]:
+    elements, start, etype, avail = _block(source, "Source")
+    words = [int(elements[start + i]) for i in range(max(0, avail))]
+    if shape == "DINT7":
+        return words[:7]
+    if shape == "LINT" and isinstance(etype, Elementary) and etype.bits < 64 and len(words) >= 2:
+        return (words[0] & 0xFFFFFFFF) | (words[1] << 32)
+    return words[0] if words else 0
+
+
+@implements("GSV")
+def gsv(ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, dest: object) -> None:
+    if not rung:
+        return
+    key = attribute_names(cls, attr)
+    shape = READABLE.get(key)
+    if shape is not None:
+        _put(dest, shape, _read_value(ctx, key))
+
+
+@implements("SSV")
+def ssv(ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, source: object) -> None:
+    if not rung:
+        return
+    key = attribute_names(cls, attr)
+    if key in WRITABLE:
+        _write_value(ctx, key, _get(source, READABLE[key]))

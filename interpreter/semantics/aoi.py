@@ -1,0 +1,135 @@
+"""Add-On Instructions: the instance data type, the call signature and the Logic routine's scope.
+
+Lowering (docs/decisions/0042-aoi-lowering.md): the Logic routine is checked and compiled
+once per definition against a *frame*: frame[0] is the instance (a structure value whose
+members are EnableIn, EnableOut, the Input/Output parameters and the local tags), frame[1..]
+the InOut arguments of the current call (structures and arrays by object, elementary ones
+through a reference cell). A parameter or local tag is therefore a Tag with slot 0 and an
+access path (member index); an InOut is slot j. A call is an ordinary catalog-style
+instruction whose implementation builds the frame and runs the compiled routine.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from stdlib import Instruction, Operand
+
+from ..diagnostics import Diagnostic, diag
+from ..syntax import nodes as n
+from ..syntax.l5x import AoiDecl
+from .program import Tag, const_number, resolve_typeref
+from .types import ArrayType, DataType, Elementary, StructType, TypeTable
+
+SCAN_ROUTINES = ("LOGIC", "PRESCAN", "ENABLEINFALSE", "POSTSCAN")
+
+
+@dataclass(slots=True)
+class AoiParam:
+    name: str
+    usage: str  # Input | Output | InOut
+    type: DataType
+    member: int  # index in the instance structure (-1 for InOut)
+    frame: int  # frame slot for InOut (0 otherwise)
+
+
+@dataclass(slots=True)
+class Aoi:
+    name: str
+    type: StructType
+    path: str
+    instruction: Instruction | None = None
+    tags: dict[str, Tag] = field(default_factory=dict)  # upper name -> frame-bound tag
+    required: list[AoiParam] = field(default_factory=list)  # call operands after the instance
+    routines: dict[str, n.Routine] = field(default_factory=dict)  # LOGIC, PRESCAN, ...
+
+
+def define_aoi(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic]) -> Aoi:
+    """Fill the (already declared) instance type `st` and build the call signature."""
+    aoi = Aoi(decl.name, st, path)
+    frame = 1
+    operands = [Operand("Instance", (st.name,), "tag", "inout", doc=f"{decl.name} instance tag")]
+    for p in decl.params:
+        t = resolve_typeref(types, p.decl.type, path, diags)
+        if t is None:
+            continue
+        sp = p.decl.names[0][1]
+        key = p.name.upper()
+        if key in aoi.tags:
+            diags.append(diag("E117", f"parameter '{p.name}' is declared twice", path, sp))
+            continue
+        if p.usage == "InOut":
+            access = () if isinstance(t, StructType | ArrayType) else (0,)
+            aoi.tags[key] = Tag(p.name, t, sp, path, slot=frame, access=access)
+            param = AoiParam(p.name, "InOut", t, -1, frame)
+            frame += 1
+        else:
+            idx = len(st.members)
+            types.add_member(st, p.name, t)
+            value = const_number(p.decl.init) if p.decl.init is not None else None
+            if value is not None:
+                st.defaults[key] = value
+            aoi.tags[key] = Tag(p.name, t, sp, path, p.decl.init, slot=0, access=(idx,), init_path=path)
+            param = AoiParam(p.name, p.usage, t, idx, 0)
+        if p.required and key not in ("ENABLEIN", "ENABLEOUT"):
+            aoi.required.append(param)
+            operands.append(_operand(param))
+    for d in decl.locals:
+        t = resolve_typeref(types, d.type, path, diags)
+        for lname, sp in d.names:
+            key = lname.upper()
+            if t is None:
+                continue
+            if key in aoi.tags:
+                diags.append(diag("E117", f"local tag '{lname}' is already declared", path, sp))
+                continue
+            idx = len(st.members)
+            types.add_member(st, lname, t)
+            st.hidden.add(key)  # local tags are not reachable through the instance from outside
+            value = const_number(d.init) if d.init is not None else None
+            if value is not None:
+                st.defaults[key] = value
+            aoi.tags[key] = Tag(lname, t, sp, path, d.init, slot=0, access=(idx,), init_path=path)
+    for a in decl.aliases:  # an alias parameter names a local tag (or one of its members)
+        target = aoi.tags.get(a.target.split(".")[0].upper())
+        at: DataType | None = target.type if target is not None else None
+        path_: list[int] = list(target.access) if target is not None else []
+        for part in a.target.split(".")[1:]:
+            m = at.member(part) if isinstance(at, StructType) else None
+            if m is None:
+                at = None
+                break
+            path_.append(m[0])
+            at = m[1]
+        if target is None or at is None or a.name.upper() in aoi.tags:
+            diags.append(diag("U305", f"alias parameter '{a.name}' for '{a.target}' cannot be simulated", path, a.span))
+            continue
+        aoi.tags[a.name.upper()] = Tag(a.name, at, a.span, path, slot=target.slot, access=tuple(path_), alias_of=target)
+    for r in decl.routines:
+        aoi.routines[r.name.upper()] = r
+    if "LOGIC" not in aoi.routines and decl.routines:
+        diags.append(diag("E124", f"add-on instruction '{decl.name}' has no Logic routine", path, decl.span))
+    aoi.instruction = Instruction(
+        name=decl.name.upper(), aliases=(), languages=frozenset({"st", "rll"}), kind="instruction",
+        transitional=False, doc=f"Add-On Instruction {decl.name}", operands=tuple(operands), family="aoi",
+    )
+    return aoi
+
+
+def _operand(p: AoiParam) -> Operand:
+    t = p.type
+    if isinstance(t, Elementary) and p.usage != "InOut":
+        # Input/Output arguments of another elementary type are converted, as Logix does.
+        types = ("ANY_ELEMENTARY",)
+    else:
+        types = ((t.elem if isinstance(t, ArrayType) else t).name,)  # type: ignore[union-attr]
+    if p.usage == "Input":
+        return Operand(p.name, types, "value", "in")
+    return Operand(p.name, types, "tag", "out" if p.usage == "Output" else "inout")
+
+
+def same_shape(arg: DataType, param: DataType) -> bool:
+    """An InOut argument must have the parameter's type (arrays: element type and dimensions)."""
+    if isinstance(param, ArrayType):
+        return isinstance(arg, ArrayType) and arg.elem is param.elem and len(arg.dims) == len(param.dims)
+    return arg is param or (isinstance(arg, Elementary) and isinstance(param, Elementary) and arg.name == param.name)
