@@ -66,8 +66,9 @@ class Runner:
         self.tmp = tmp_path
         self.capsys = capsys
 
-    def trace(self, src: str, watch: Sequence[str], scans: int, args: Sequence[str] = ()) -> Trace:
-        prog = self.tmp / "prog.st"
+    def trace(self, src: str, watch: Sequence[str], scans: int, args: Sequence[str] = (),
+              name: str = "prog.st") -> Trace:
+        prog = self.tmp / name
         prog.write_text(src)
         out = self.tmp / "trace.csv"
         argv = ["run", str(prog), "--scans", str(scans), "--trace", str(out), "--json", *args]
