@@ -241,3 +241,14 @@ def test_master_driven_jog_with_a_position_lock(mp) -> None:
     tr.check("S.CommandPosition", lambda t: max(0.0, 0.5 * (m(t) - 5.0) - 0.000125), 5.0 * CUP + F32)
     assert [tr.at(0.4, n) for n in ("S.JogStatus", "S.JogLockStatus", "c2.IP")] == [1, 0, 1]
     assert tr.at(0.6, "S.JogLockStatus") == 1
+
+
+def test_out_of_range_operands_are_error_13_with_the_operand_index(mp) -> None:
+    # MDAC faceplate: SlaveAxis 0, MasterAxis 1, MotionControl 2, MotionType 3, MasterReference 4
+    body = """IF k = 0 THEN
+  mt := 9; mr := 5;
+  MDAC(S, M, c1, mt, command);
+  MDAC(T, M, c2, move, mr);
+END_IF;"""
+    tr = mp.trace(prog("  mt, mr : DINT;\n", body), ["c1.ER", "c1.ERR", "c1.EXERR", "c2.ERR", "c2.EXERR", "c1.IP"], scans=2)
+    assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.EXERR", "c2.ERR", "c2.EXERR", "c1.IP")] == [1, 13, 3, 13, 4, 0]
