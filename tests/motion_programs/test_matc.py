@@ -257,3 +257,25 @@ IF k = 500 THEN MAS(A, c3, all, yes, 1000.0, unitspersec2, no, 0.0, unitspersec3
     p_stop = tr.at(0.502, "A.CommandPosition")
     assert abs(tr.at(0.599, "A.CommandPosition") - (p_stop + 0.1125)) < 1e-3
     assert (tr.at(0.516, "c3.PC"), tr.at(0.518, "c3.PC"), tr.at(0.518, "c3.IP")) == (0, 1, 0)
+
+
+def test_initialised_profile_is_calculated_as_mccp_with_zero_slopes(mp) -> None:
+    # SPEC 2.1: the same cubic points as a CAM_PROFILE initialiser and through MCCP with
+    # start/end slope 0 drive two axes identically; Status 2 at load, before any scan
+    decls = """  init : CAM_PROFILE[4] := [(Master := 0.0, Slave := 0.0, SegmentType := 1), (Master := 0.3, Slave := 4.0, SegmentType := 1),
+                            (Master := 0.7, Slave := 1.0, SegmentType := 1), (Master := 1.0, Slave := 6.0, SegmentType := 1)];
+  pts : CAM[4] := [(Master := 0.0, Slave := 0.0, SegmentType := 1), (Master := 0.3, Slave := 4.0, SegmentType := 1),
+                   (Master := 0.7, Slave := 1.0, SegmentType := 1), (Master := 1.0, Slave := 6.0, SegmentType := 1)];
+  calc : CAM_PROFILE[4];
+  cc : MOTION_INSTRUCTION;
+"""
+    body = """IF k = 0 THEN
+  MCCP(cc, pts, 4, 0.0, 0.0, calc);
+  MATC(A, c1, 0, init, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
+  MATC(B, c2, 0, calc, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
+END_IF;"""
+    tr = mp.trace(prog(decls, body), ["init[0].Status", "A.CommandPosition", "B.CommandPosition"], scans=1100)
+    assert tr.col("A.CommandPosition") == tr.col("B.CommandPosition")
+    # the spline passes through the points: 4 at 0.3 s, 1 at 0.7 s, 6 at the end (start 0.002)
+    assert [tr.at(t, "A.CommandPosition") for t in (0.302, 0.702, 1.099)] == pytest.approx([4.0, 1.0, 6.0], abs=F32)
+    assert tr.at(1.099, "init[0].Status") == 2
