@@ -45,20 +45,39 @@ class RllBuilder(AstBuilder):
         return n.Comment(text, _extent(c))
 
     def rung(self, c: list) -> list[n.LadderElement]:
-        return list(c)
+        return c[0] if c else []
 
-    def leg(self, c: list) -> list[n.LadderElement]:
-        return list(c)
+    leg = rung
+
+    def elements_first(self, c: list) -> list[n.LadderElement]:
+        return [c[0]]
+
+    def elements_more(self, c: list) -> list[n.LadderElement]:
+        c[0].append(c[1])
+        return c[0]  # type: ignore[no-any-return]
+
+    def legs_first(self, c: list) -> list[list[n.LadderElement]]:
+        return [c[0]]
+
+    def legs_more(self, c: list) -> list[list[n.LadderElement]]:
+        c[0].append(c[2])
+        return c[0]  # type: ignore[no-any-return]
 
     def branch(self, c: list) -> n.Branch:
-        legs = [x for x in c if isinstance(x, list)]
-        return n.Branch(legs, tspan(c[0]).to(tspan(c[-1])))
+        return n.Branch(c[1], tspan(c[0]).to(tspan(c[2])))
+
+    def slots_first(self, c: list) -> list:
+        return [c[0]]
+
+    def slots_more(self, c: list) -> list:
+        c[0].extend((c[1], c[2]))  # keep the commas: an empty slot's span runs between them
+        return c[0]  # type: ignore[no-any-return]
 
     def instr(self, c: list) -> n.LadderInstr:
         name: Token = c[0]
-        # c = NAME "(" slot ("," slot)* ")": slots sit between separator tokens
-        slots = c[2:-1:2]
-        seps = c[1::2]
+        items = [c[1], *c[2], c[3]]  # "(" slot ("," slot)* ")": slots sit between separators
+        slots = items[1:-1:2]
+        seps = items[0::2]
         operands: list[n.Expr] = []
         if not (len(slots) == 1 and slots[0] is None):  # `NOP()`: no operands at all
             for i, slot in enumerate(slots):
@@ -66,7 +85,7 @@ class RllBuilder(AstBuilder):
                     before, after = seps[i], seps[i + 1]
                     slot = n.Placeholder(tspan(before).to(tspan(after)))  # the separators around it
                 operands.append(slot)
-        return n.LadderInstr(str(name), operands, tspan(name).to(tspan(c[-1])), tspan(name))
+        return n.LadderInstr(str(name), operands, tspan(name).to(tspan(c[3])), tspan(name))
 
     def placeholder(self, c: list) -> n.Placeholder:
         return n.Placeholder(tspan(c[0]))
