@@ -14,15 +14,13 @@ from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
 from ..syntax import nodes as n
 from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
-from ..vm.context import ExecContext, MajorFault
+from ..vm.context import DEFAULT_WATCHDOG, ExecContext, MajorFault
 from ..vm.values import string_text
 from .aoi import AoiRoutines, make_impls
 from .loader import Loaded
 from .motion import MotionRuntime
 from .storage import allocate
 from .tasks import Schedule
-
-DEFAULT_WATCHDOG = 5_000_000
 
 
 @dataclass(slots=True)

@@ -21,7 +21,7 @@ from . import nodes as n
 from .comments import strip_comments
 from .literals import decode_text
 from .st_lexer import SlowPath, contextual_tokens, fast_parse
-from .st_parser import AstBuilder, parse_st, tspan
+from .st_parser import AstBuilder, grammar_cache, parse_st, tspan
 
 _ST_PREFIX = "st__"
 
@@ -115,6 +115,7 @@ def _parser() -> Lark:
     return Lark.open(
         str(Path(__file__).with_name("rll.lark")), parser="lalr", lexer="contextual",
         transformer=RllBuilder(), maybe_placeholders=True, start=["rung_line", "rung_only"],
+        cache=grammar_cache("rll"),
     )
 
 

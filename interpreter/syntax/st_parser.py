@@ -262,12 +262,31 @@ class AstBuilder(Transformer):
         return n.Index(c[0], list(c[1:]), _join(c[0], c[-1]))
 
 
+def grammar_cache(name: str) -> str | bool:
+    """Where lark keeps a grammar's analysed tables between runs (saves ~0.3 s per start).
+
+    A file in the user's own cache directory rather than lark's default in the shared temp
+    directory; lark checks the grammar and options hash stored in it before use. False
+    (no caching) when the directory cannot be created.
+    """
+    import os
+
+    import lark
+
+    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "logixst"
+    try:
+        base.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return False
+    return str(base / f"{name}-lark{lark.__version__}.cache")
+
+
 @cache
 def _parser() -> Lark:
     grammar = (Path(__file__).parent / "st.lark").read_text()
     return Lark(
         grammar, parser="lalr", lexer=StLexer, transformer=AstBuilder(),
-        maybe_placeholders=True, start=["start", "expr"],
+        maybe_placeholders=True, start=["start", "expr"], cache=grammar_cache("st"),
     )
 
 

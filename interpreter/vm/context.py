@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+DEFAULT_WATCHDOG = 5_000_000  # statements or ladder instructions per scan (SPEC 9.4)
+
 
 class MajorFault(Exception):
     """A major fault stops the scan; `site` locates it in the source (set by the VM)."""

@@ -10,6 +10,7 @@ comments and descriptions) and an ST routine each.
 from __future__ import annotations
 
 import gc
+import subprocess
 import sys
 import tempfile
 import time
@@ -127,25 +128,37 @@ def bench(megabytes: float = 2.0, repeat: int = 3) -> dict[str, float]:
         path.write_text(text)
         load([path])  # grammar compilation and catalog loading are one-time costs
         best = float("inf")
+        loaded = None
         for _ in range(repeat):
+            del loaded  # free the previous result outside the timed region
             gc.collect()
             t0 = time.perf_counter()
             loaded = load([path])
             best = min(best, time.perf_counter() - t0)
         errors = [d for d in loaded.diagnostics if d.severity.value == "error"]
         assert not errors, errors[:3]
+        cli = float("inf")
+        for _ in range(repeat):  # the whole command, as a user runs it: start-up, grammars, exit
+            t0 = time.perf_counter()
+            done = subprocess.run([sys.executable, "-m", "interpreter.cli", "check", str(path)],
+                                  capture_output=True, text=True, check=False)
+            cli = min(cli, time.perf_counter() - t0)
+            assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     rungs = text.count("<Rung ")
-    return {"bytes": len(text.encode()), "rungs": rungs, "seconds": best}
+    return {"bytes": len(text.encode()), "rungs": rungs, "seconds": best, "cli": cli}
 
 
 def test_l5x_check_benchmark() -> None:
     r = bench()
-    print(f"\ncheck {r['bytes'] / 1e6:.2f} MB export ({r['rungs']:.0f} rungs): {r['seconds']:.2f} s")
+    print(f"\ncheck {r['bytes'] / 1e6:.2f} MB export ({r['rungs']:.0f} rungs): load {r['seconds']:.2f} s, "
+          f"whole `logixst check` command {r['cli']:.2f} s")
 
 
 if __name__ == "__main__":
     mb = float(sys.argv[1]) if len(sys.argv) > 1 else 2.0
     r = bench(mb)
     verdict = "meets" if r["seconds"] < TARGET_S else "misses"
+    verdict_cli = "meets" if r["cli"] < TARGET_S else "misses"
     print(f"check of a {r['bytes'] / 1e6:.2f} MB export with {r['rungs']:.0f} rungs: best of 3 "
-          f"{r['seconds']:.2f} s; {verdict} the {TARGET_S} s target")
+          f"load {r['seconds']:.2f} s ({verdict} the {TARGET_S} s target); whole `logixst check` "
+          f"command {r['cli']:.2f} s ({verdict_cli})")

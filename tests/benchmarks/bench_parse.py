@@ -80,7 +80,9 @@ def bench(lines: int = 20_000, repeat: int = 3) -> dict[str, float]:
         path = Path(d) / "bench.st"
         path.write_text(text)
         best = float("inf")
+        loaded = None
         for _ in range(repeat):
+            del loaded  # free the previous result outside the timed region
             gc.collect()
             t0 = time.perf_counter()
             loaded = load([path])
