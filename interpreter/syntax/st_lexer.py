@@ -29,7 +29,7 @@ from lark.parsers.lalr_analysis import Shift
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 # Regex terminals of st.lark and the words a keyword-like regex terminal stands for.
-_REGEX_TERMINALS = {"NAME", "MEMBER_NAME", "QNAME", "LABEL_NAME", "ENUM_PCT", "REAL", "RADIX_INT", "INT", "STRING_LIT",
+_REGEX_TERMINALS = {"NAME", "MEMBER_NAME", "PARAM_REF", "QNAME", "LABEL_NAME", "ENUM_PCT", "REAL", "RADIX_INT", "INT", "STRING_LIT",
                     "VAR_KW", "UNSUPPORTED_KW"}
 _REGEX_WORDS = {
     "VAR_KW": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "VAR_EXTERNAL", "VAR_TEMP"),
@@ -74,6 +74,7 @@ class StLexer(Lexer):
             rf"|(?P<INT>{by_name['INT'].pattern.value})"
             rf"|(?P<STRING_LIT>{by_name['STRING_LIT'].pattern.value})"
             rf"|(?P<ENUM_PCT>{by_name['ENUM_PCT'].pattern.value})"
+            rf"|(?P<PARAM_REF>{by_name['PARAM_REF'].pattern.value})"
             rf"|(?P<O>{op_alts})"
             r")",
             re.IGNORECASE,

@@ -41,6 +41,7 @@ SNIPPETS = {
     "operators": "VAR a, b : DINT; c : BOOL; END_VAR c := a <= b OR a >= b AND a <> b; a := -2 ** 2 MOD 3;",
     "enum_text": "VAR m : MOTION_INSTRUCTION; END_VAR MAJ(ax, m, 0, 1.0, %ofTime, 1, Unitspersec2);",
     # After '.', reserved words are member names (UDT members AND, MOD, Array in real exports).
+    "program_parameter": "\\Other.Flag := \\Other.In.OR AND NOT \\P2.x[1];",
     "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
@@ -100,6 +101,7 @@ RUNGS = [
     "GSV(WallClockTime,,LocalDateTime,dt[0])XIC(Local:1:I.Data.3)OTE(S:FS);",
     "MAJ(ax,m,0,1.0,Units per sec,1.0,Units per sec2,S-Curve,100.0,100.0,% of Maximum);",
     "XIC(x.[idx.y])OTE(z);",
+    "XIC(\\CM_HMI.HMI.Use.Bool[126])MOV(\\P.x,\\Q.y.AND);",
     "AND(Move.A,Move.B,Move.AND)NOT(a.NOT,b.Array[1])MOD(x.MOD,2,y.mod)XIC(s.TO);",
 ]
 
