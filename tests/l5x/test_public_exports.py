@@ -2,6 +2,9 @@
 zero syntax (S) diagnostics. The corpus is downloaded locally and not committed (licences);
 docs/l5x-corpus.md lists what was tested. Skipped when the directory does not exist.
 
+The MIT-licensed exports in tests/l5x/public/ (see LICENSES.md there) are committed and
+always tested, with the exact diagnostics they give.
+
 Exports too large to copy whole are kept as extracts of their logic:
 - `<name>.rungs`: one rung's `<Text>` per line, parsed with parse_rung;
 - `<name>.st`: ST routine bodies, each starting after a line `%% <routine name>`, parsed
@@ -21,6 +24,7 @@ from interpreter.syntax.rll_parser import parse_rung
 from interpreter.syntax.st_parser import parse_st
 
 CORPUS = Path(os.environ.get("LOGIXST_L5X_CORPUS", "/work/l5x-corpus"))
+COMMITTED = Path(__file__).parent / "public"
 
 
 def _files(*suffixes: str) -> list[Path]:
@@ -32,6 +36,21 @@ def _files(*suffixes: str) -> list[Path]:
 FILES = _files(".l5x")
 RUNGS = _files(".rungs")
 ST = _files(".st")
+
+
+# Diagnostic codes of the committed exports. belt_conveyor (v20) writes `Failures`, the member
+# declared Hidden="true" that hosts the UDT's BIT members; hidden members are not part of the
+# type's visible members in our model, hence E102.
+COMMITTED_CODES = {
+    "WEST77-tech__AOI-CONVEYOR-Studio5000__CONVEYOR_AOI.L5X": [],
+    "alairjunior__l5x2c__belt_conveyor.L5X": ["E102"],
+}
+
+
+@pytest.mark.parametrize("name", sorted(COMMITTED_CODES))
+def test_committed_public_export(name: str) -> None:
+    loaded = load([COMMITTED / name])
+    assert [d.code for d in loaded.diagnostics] == COMMITTED_CODES[name], [d.text() for d in loaded.diagnostics]
 
 
 @pytest.mark.skipif(not FILES, reason=f"no L5X corpus in {CORPUS}")
