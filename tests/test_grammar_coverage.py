@@ -109,6 +109,7 @@ CORPUS: dict[str, str] = {
         x := s.Member.Sub + arr[i + 1] + m[1, 2] + cube[1, 2, 3];
         b := d.5 OR d.[i + 1] OR arr[2].3;
         x := Local:1:I.Data + Local:2:O.Data.3;
+        x := \\Other.Param + \\Other.Arr[1].AND;
         MAM(ax, mc, 0, 10.0, 5.0, %ofMaximum, 100.0, Unitspersec2, 100.0, %ofMaximum, S-Curve);
         x := 1 + 1U + 2L + 3UL + 1_000 + 8#17 + 16#FF_FF + 2#1010_1010L + 1.25 + 1e6;
         s := 'it$'s' + "double";

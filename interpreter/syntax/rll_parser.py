@@ -198,7 +198,7 @@ def _string_end(text: str, i: int) -> tuple[int, bool]:
 _END = {"$END", "<END-OF-FILE>"}
 _FRIENDLY = {
     "LSQB": "'['", "RSQB": "']'", "COMMA": "','", "LPAR": "'('", "RPAR": "')'", "SEMI": "';'",
-    "STRING_LIT": "a string",
+    "STRING_LIT": "a string", "st__MEMBER_NAME": "a member name",
 }
 
 

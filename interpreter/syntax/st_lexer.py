@@ -7,7 +7,8 @@ whitespace in one match, and keywords come from a dict. The only context-depende
 are asked of the parser state, exactly where the contextual lexer would decide:
 - `name:` is LABEL_NAME (a CASE label) only where the parser accepts one;
 - `a:b` is QNAME (`S:FS`, `Local:1:I`) only where accepted, else NAME then ':';
-- soft keywords (RETAIN, CONSTANT ...) are NAMEs where the keyword is not expected.
+- soft keywords (RETAIN, CONSTANT ...) are NAMEs where the keyword is not expected;
+- any word right after '.' is MEMBER_NAME, reserved words included (`Move.AND`).
 The keyword and operator tables are read from the grammar's terminals, so st.lark stays the
 single definition; a terminal this lexer does not know fails at construction (tests catch it).
 """
@@ -28,7 +29,7 @@ from lark.parsers.lalr_analysis import Shift
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 # Regex terminals of st.lark and the words a keyword-like regex terminal stands for.
-_REGEX_TERMINALS = {"NAME", "QNAME", "LABEL_NAME", "ENUM_PCT", "REAL", "RADIX_INT", "INT", "STRING_LIT",
+_REGEX_TERMINALS = {"NAME", "MEMBER_NAME", "PARAM_REF", "QNAME", "LABEL_NAME", "ENUM_PCT", "REAL", "RADIX_INT", "INT", "STRING_LIT",
                     "VAR_KW", "UNSUPPORTED_KW"}
 _REGEX_WORDS = {
     "VAR_KW": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "VAR_EXTERNAL", "VAR_TEMP"),
@@ -73,6 +74,7 @@ class StLexer(Lexer):
             rf"|(?P<INT>{by_name['INT'].pattern.value})"
             rf"|(?P<STRING_LIT>{by_name['STRING_LIT'].pattern.value})"
             rf"|(?P<ENUM_PCT>{by_name['ENUM_PCT'].pattern.value})"
+            rf"|(?P<PARAM_REF>{by_name['PARAM_REF'].pattern.value})"
             rf"|(?P<O>{op_alts})"
             r")",
             re.IGNORECASE,
@@ -130,7 +132,14 @@ class StLexer(Lexer):
             kind = m.lastgroup
             value = m.group(kind)  # type: ignore[arg-type]
             stop = m.end()
-            if kind == "W":
+            ttype: str | None
+            if kind == "W" and last is not None and last.type == "DOT":
+                # a member name: keywords are names here; `a.b:c` is not one word
+                if ":" in value:
+                    stop = start + value.index(":")
+                    value = value[: stop - start]
+                ttype = "MEMBER_NAME"
+            elif kind == "W":
                 upper = value.upper()
                 ttype = keywords.get(upper)
                 if ttype is not None:

@@ -249,6 +249,11 @@ class AstBuilder(Transformer):
     def name(self, c: list) -> n.Name:
         return n.Name(str(c[0]), tspan(c[0]))
 
+    def param_ref(self, c: list) -> n.Name:
+        # `\P.T` names tag T of program P, which the model keys and watches as `Program:P.T`
+        program, tag = c
+        return n.Name(f"Program:{str(program)[1:]}.{tag}", tspan(program).to(tspan(tag)))
+
     def member(self, c: list) -> n.Member:
         return n.Member(c[0], str(c[1]), _join(c[0], c[1]), tspan(c[1]))
 
@@ -300,7 +305,7 @@ def parse_expression(text: str) -> n.Expr:
 
 
 _FRIENDLY = {
-    "SEMI": "';'", "NAME": "a name", "QNAME": "a name", "INT": "a number", "REAL": "a number",
+    "SEMI": "';'", "NAME": "a name", "MEMBER_NAME": "a member name", "QNAME": "a name", "PARAM_REF": "a name", "INT": "a number", "REAL": "a number",
     "RPAR": "')'", "LPAR": "'('", "COMMA": "','", "COLON": "':'", "ASSIGN": "':='",
     "RSQB": "']'", "LSQB": "'['", "DOT": "'.'", "$END": "end of file",
 }

@@ -111,3 +111,27 @@ def test_tags_must_be_an_l5x(capsys: pytest.CaptureFixture[str], tmp_path: Path)
     st.write_text("VAR x : DINT; END_VAR\nx := 1;\n")
     capsys.readouterr()
     assert main(["run", str(st), "--tags", str(st)]) == 2
+
+
+def test_members_named_like_reserved_words(capsys: pytest.CaptureFixture[str]) -> None:
+    # Studio exports hold UDT members called AND, MOD, NOT, Array (fanno/l5x-emulator v37):
+    # after '.', a reserved word is a member name, in ladder operands and in ST alike.
+    path = FIX / "keyword_members.L5X"
+    capsys.readouterr()
+    assert main(["check", str(path)]) == 0
+    assert capsys.readouterr().out.strip() == "0 error(s), 0 warning(s)"
+    tags = run(capsys, path, 1, "Kw.AND", "Kw.MOD", "Kw.Array[1]", "Kw.NOT")
+    # 3 AND 5 = 2#011 AND 2#101 = 1; 7 MOD 4 = 3; Array[1] := MOD = 3; NOT := 1 + 3 * 3 = 10
+    assert tags == {"Kw.AND": 1, "Kw.MOD": 3, "Kw.Array[1]": 3, "Kw.NOT": 10}
+
+
+def test_program_parameter_references(capsys: pytest.CaptureFixture[str]) -> None:
+    # `\Program.Parameter` (Huiscode/L5x v35 export: `XIC(\CM_HMI.HMI.Machine.Use.Bool[126])`)
+    # names another program's tag, in ladder and in ST.
+    path = FIX / "program_parameters.L5X"
+    capsys.readouterr()
+    assert main(["check", str(path)]) == 0
+    assert capsys.readouterr().out.strip() == "0 error(s), 0 warning(s)"
+    tags = run(capsys, path, 1, "Program:Source.Level", "Program:User.Sum", "Program:User.Scaled")
+    # Source runs first: Level = 5; then User: Sum = 5 + 2 = 7, Scaled = 5 * 10 = 50
+    assert tags == {"Program:Source.Level": 5, "Program:User.Sum": 7, "Program:User.Scaled": 50}

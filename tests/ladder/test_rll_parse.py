@@ -35,6 +35,18 @@ def ident(e: n.Expr) -> str:
     return e.ident
 
 
+# ------------------------------------------------------------------ operands
+def test_member_names_may_be_reserved_words() -> None:
+    # Studio 5000 exports hold UDT members named AND, OR, XOR, NOT, MOD, Array (fanno/l5x-emulator)
+    r = rung("AND(Move.A,Move.B,Move.AND)SQO(Seq.Array,Seq.Mask,Seq.Src,Seq.Ctl,?,?)")
+    dest = r.elements[0].operands[2]
+    assert isinstance(dest, n.Member) and dest.name == "AND" and ident(dest.base) == "Move"
+    arr = r.elements[1].operands[0]
+    assert isinstance(arr, n.Member) and arr.name == "Array"
+    # "AND(Move.A,Move.B," is 18 characters, so `Move.AND` occupies columns 19..26
+    assert dest.span == n.Span(1, 19, 1, 27)
+
+
 # ------------------------------------------------------------------ rung structure
 def test_concatenated_instructions() -> None:
     r = rung("XIC(a)XIO(b)OTE(c)")

@@ -40,6 +40,9 @@ SNIPPETS = {
     "radix_real": "VAR a : DINT; r : REAL; END_VAR a := 16#FF_FF + 2#1010 + 8#17 + 10U; r := 1.5e3 + 2.0;",
     "operators": "VAR a, b : DINT; c : BOOL; END_VAR c := a <= b OR a >= b AND a <> b; a := -2 ** 2 MOD 3;",
     "enum_text": "VAR m : MOTION_INSTRUCTION; END_VAR MAJ(ax, m, 0, 1.0, %ofTime, 1, Unitspersec2);",
+    # After '.', reserved words are member names (UDT members AND, MOD, Array in real exports).
+    "program_parameter": "\\Other.Flag := \\Other.In.OR AND NOT \\P2.x[1];",
+    "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
 
@@ -78,6 +81,12 @@ def test_errors_take_the_slow_path_with_recovery(bad: str) -> None:
     assert diags and all(d.code.startswith("S") for d in diags)
 
 
+@pytest.mark.parametrize("text", ["a := AND;", "a := b.;", "a := OR.x;"])
+def test_reserved_words_stay_reserved_outside_member_position(text: str) -> None:
+    _, diags = parse_st(text, "kw.st")
+    assert [d.code for d in diags] == ["S001"], [d.text() for d in diags]
+
+
 def test_recovery_resumes_after_the_error_not_at_the_start() -> None:
     # lark calls the lexer again after an error handler inserts the missing ';': lexing must
     # continue after END_VAR's position, so exactly one S005 and nothing else is reported.
@@ -92,6 +101,8 @@ RUNGS = [
     "GSV(WallClockTime,,LocalDateTime,dt[0])XIC(Local:1:I.Data.3)OTE(S:FS);",
     "MAJ(ax,m,0,1.0,Units per sec,1.0,Units per sec2,S-Curve,100.0,100.0,% of Maximum);",
     "XIC(x.[idx.y])OTE(z);",
+    "XIC(\\CM_HMI.HMI.Use.Bool[126])MOV(\\P.x,\\Q.y.AND);",
+    "AND(Move.A,Move.B,Move.AND)NOT(a.NOT,b.Array[1])MOD(x.MOD,2,y.mod)XIC(s.TO);",
 ]
 
 
