@@ -271,19 +271,28 @@ def grammar_cache(name: str) -> str | bool:
     """Where lark keeps a grammar's analysed tables between runs (saves ~0.3 s per start).
 
     A file in the user's own cache directory rather than lark's default in the shared temp
-    directory; lark checks the grammar and options hash stored in it before use. False
-    (no caching) when the directory cannot be created.
+    directory. Its name carries a hash of every grammar file here, because lark's own check
+    does not notice a change in a file the grammar imports (rll.lark imports st.lark).
+    False (no caching) when the directory cannot be created.
     """
+    import hashlib
     import os
 
     import lark
 
+    digest = hashlib.sha256()
+    for grammar in sorted(Path(__file__).parent.glob("*.lark")):
+        digest.update(grammar.read_bytes())
     base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "logixst"
+    current = base / f"{name}-lark{lark.__version__}-{digest.hexdigest()[:16]}.cache"
     try:
         base.mkdir(parents=True, exist_ok=True)
+        for old in base.glob(f"{name}-lark*.cache"):
+            if old != current:
+                old.unlink(missing_ok=True)
     except OSError:
         return False
-    return str(base / f"{name}-lark{lark.__version__}.cache")
+    return str(current)
 
 
 @cache

@@ -135,3 +135,21 @@ def test_rung_fast_path_matches_lark_on_a_generated_export() -> None:
         slow = parser.parse(text, start="rung_only")
         rp._shift(slow, rp._Origin(1, 1))
         assert fast_parse(parser, text, "rung_only", lambda s, t=text: contextual_tokens(parser, t, s)) == slow
+
+
+def test_grammar_cache_file_changes_with_any_grammar_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # rll.lark imports st.lark: editing either must give both parsers a fresh cache file.
+    import shutil
+
+    from interpreter.syntax import st_parser
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    fake = tmp_path / "syntax"
+    fake.mkdir()
+    for g in (ROOT / "interpreter" / "syntax").glob("*.lark"):
+        shutil.copy(g, fake / g.name)
+    monkeypatch.setattr(st_parser, "__file__", str(fake / "st_parser.py"))
+    before = st_parser.grammar_cache("rll")
+    (fake / "st.lark").write_text((fake / "st.lark").read_text() + "\n// edited\n")
+    after = st_parser.grammar_cache("rll")
+    assert isinstance(before, str) and isinstance(after, str) and before != after
