@@ -116,19 +116,14 @@ class StLexer(Lexer):
                 ws_end = self._skip_ws(text, pos, end)
                 if ws_end >= end:
                     return
-                line += text.count("\n", pos, ws_end)
-                if "\n" in text[pos:ws_end]:
-                    line_start = text.rfind("\n", pos, ws_end) + 1
+                line, line_start = _advance(text, pos, ws_end, line, line_start)
                 col = ws_end - line_start + 1
                 raise UnexpectedCharacters(
                     text, ws_end, line, col, state=parser_state, token_history=[last] if last else None,
                 )
             start = m.end(1)
             if start > pos:
-                nl = text.count("\n", pos, start)
-                if nl:
-                    line += nl
-                    line_start = text.rfind("\n", pos, start) + 1
+                line, line_start = _advance(text, pos, start, line, line_start)
             kind = m.lastgroup
             value = m.group(kind)  # type: ignore[arg-type]
             stop = m.end()
@@ -179,6 +174,14 @@ class StLexer(Lexer):
         while pos < end and text[pos] in " \t\r\n\f":
             pos += 1
         return pos
+
+
+def _advance(text: str, pos: int, stop: int, line: int, line_start: int) -> tuple[int, int]:
+    """(line, offset where that line starts) after moving from `pos` to `stop`."""
+    nl = text.count("\n", pos, stop)
+    if nl:
+        return line + nl, text.rfind("\n", pos, stop) + 1
+    return line, line_start
 
 
 class SlowPath(Exception):
@@ -320,19 +323,14 @@ def contextual_tokens(parser: Lark, text: str, state: Callable[[], int], line: i
         sc = cache.get(st) or _state_scanner(parser, st, cache)
         m = sc.regex.match(text, pos)
         if m is None:
-            ws_end = pos + len(text[pos:]) - len(text[pos:].lstrip(" \t\r\n\f"))
+            ws_end = StLexer._skip_ws(text, pos, end)
             if ws_end >= end:
                 return
-            line += text.count("\n", pos, ws_end)
-            if "\n" in text[pos:ws_end]:
-                line_start = text.rfind("\n", pos, ws_end) + 1
+            line, line_start = _advance(text, pos, ws_end, line, line_start)
             raise UnexpectedCharacters(text, ws_end, line, ws_end - line_start + 1, state=None)
         start = m.end(1)
         if start > pos:
-            nl = text.count("\n", pos, start)
-            if nl:
-                line += nl
-                line_start = text.rfind("\n", pos, start) + 1
+            line, line_start = _advance(text, pos, start, line, line_start)
         ttype = m.lastgroup
         assert ttype is not None
         stop = m.end()
