@@ -76,6 +76,20 @@ def _file_start(ctx: ExecContext, rung: bool, ctl: list) -> int | None:
     return int(ctl[K_LEN])
 
 
+def _file_values(ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, ctl: list) -> list | None:
+    """AVE/STD: the LEN elements to reduce, or None when there is nothing to do this scan.
+
+    No elements (LEN 0) sets ER: a mean or deviation of nothing is undefined.
+    """
+    n = _file_start(ctx, rung, ctl)
+    if n is None:
+        return None
+    if n == 0:
+        ctl[ER] = 1
+        return None
+    return [arr.elements[i] for i in _walk(ctx, arr, int(dim), n)]
+
+
 def _finish(ctl: list, n: int) -> None:
     ctl[K_POS] = n
     ctl[DN] = 1
@@ -87,13 +101,10 @@ def ave(
     ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, dest: Dest, ctl: list,
     length: object = None, position: object = None,
 ) -> None:
-    n = _file_start(ctx, rung, ctl)
-    if n is None:
+    values = _file_values(ctx, rung, arr, dim, ctl)
+    if values is None:
         return
-    if n == 0:
-        ctl[ER] = 1  # an average of no elements is undefined
-        return
-    values = [arr.elements[i] for i in _walk(ctx, arr, int(dim), n)]
+    n = len(values)
     # an integer sum is exact and int / int is correctly rounded; REAL data sums in double
     total = sum(values) if all(isinstance(v, int) for v in values) else math.fsum(values)
     store(ctx, dest, total / n)
@@ -105,13 +116,11 @@ def std(
     ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, dest: Dest, ctl: list,
     length: object = None, position: object = None,
 ) -> None:
-    n = _file_start(ctx, rung, ctl)
-    if n is None:
+    found = _file_values(ctx, rung, arr, dim, ctl)
+    if found is None:
         return
-    if n == 0:
-        ctl[ER] = 1
-        return
-    values = [float(arr.elements[i]) for i in _walk(ctx, arr, int(dim), n)]
+    values = [float(v) for v in found]
+    n = len(values)
     mean = math.fsum(values) / n
     spread = math.fsum((v - mean) ** 2 for v in values)
     store(ctx, dest, math.sqrt(spread / (n - 1)) if n > 1 else 0.0)

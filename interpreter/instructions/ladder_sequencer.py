@@ -19,7 +19,8 @@ from __future__ import annotations
 
 from ..vm.context import ExecContext
 from ..vm.refs import ArrayRef, BitRef, Ref
-from .ladder_timers_counters import _K, DINT_MAX, K_LEN, K_POS, apply_pseudo
+from .fbd_timers import DINT_MAX
+from .ladder_timers_counters import _K, K_LEN, K_POS, apply_pseudo
 from .registry import implements, prescan
 
 EN, DN, ER = _K["EN"], _K["DN"], _K["ER"]
@@ -52,8 +53,15 @@ def sqi(
     return (int(source) & m) == (_step(ctx, arr, pos) & m)
 
 
-def _advance(ctl: list) -> bool:
-    """Rung true: step on a new true period; False when LEN/POS are invalid (ER)."""
+def _advance(ctl: list, rung: bool) -> bool:
+    """SQO/SQL rung handling: True when the step's work is to be done (at POS).
+
+    A false rung clears EN; a true rung steps on a new true period. False when the rung is
+    false or LEN/POS are invalid (ER).
+    """
+    if not rung:
+        ctl[EN] = 0
+        return False
     n, pos = ctl[K_LEN], ctl[K_POS]
     if n <= 0 or pos < 0:
         ctl[ER] = 1
@@ -78,10 +86,7 @@ def sqo(
     ctx: ExecContext, rung: bool, arr: ArrayRef, mask: int, dest: Ref | BitRef, ctl: list,
     length: object = None, position: object = None,
 ) -> None:
-    if not rung:
-        ctl[EN] = 0
-        return
-    if _advance(ctl):
+    if _advance(ctl, rung):
         m = int(mask) & WORD
         step = _step(ctx, arr, ctl[K_POS])
         dest.set(((int(dest.get()) & ~m) | (step & m)) & WORD)
@@ -92,10 +97,7 @@ def sql(
     ctx: ExecContext, rung: bool, arr: ArrayRef, source: int, ctl: list,
     length: object = None, position: object = None,
 ) -> None:
-    if not rung:
-        ctl[EN] = 0
-        return
-    if _advance(ctl):
+    if _advance(ctl, rung):
         _step(ctx, arr, ctl[K_POS])  # bounds check
         arr.set(ctl[K_POS], source)
 

@@ -27,20 +27,9 @@ set, otherwise ACC >= PRE; it is evaluated whenever the rung is true.
 
 from __future__ import annotations
 
-from ..semantics.types import StructType, TypeTable
 from ..vm.context import ExecContext
-from .fbd_timers import _elapsed_ms, _start_timing
+from .fbd_timers import DINT_MAX, DINT_MIN, _elapsed_ms, _layout, _start_timing
 from .registry import implements, prescan
-
-DINT_MAX = 2**31 - 1
-DINT_MIN = -(2**31)
-
-
-def _layout(name: str) -> dict[str, int]:
-    t = TypeTable().get(name)
-    assert isinstance(t, StructType), name
-    return t.index
-
 
 _T = _layout("TIMER")
 PRE, ACC, EN, TT, DN = _T["PRE"], _T["ACC"], _T["EN"], _T["TT"], _T["DN"]

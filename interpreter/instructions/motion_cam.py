@@ -19,6 +19,7 @@ from ..vm.refs import ArrayRef
 from .motion_common import (
     begin,
     clear_on_prescan,
+    configured,
     fail,
     failed,
     real,
@@ -85,9 +86,8 @@ def matc(
     if not begin(ctl, rung):
         return
     rt = runtime(ctx)
-    ax = rt.axis(axis)
+    ax = configured(rt, ctl, rt.axis(axis))
     if ax is None:
-        fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
         return
     if cam_profile.start != 0:  # only element [0] carries the profile's Status
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MATC_PROFILE)

@@ -13,9 +13,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TypeVar
 
 from ..motion import MotionError, StartResult
-from ..runtime.motion import Axis, MotionRuntime
+from ..runtime.motion import Axis, Group, MotionRuntime
 from ..runtime.motion_layout import DN, ER, ERR, EXERR, set_bits, set_error
 from ..vm.context import ExecContext
 
@@ -32,6 +33,8 @@ _SPEED_UNITS = {UNITS_PER_SEC, PERCENT_OF_MAX, SECONDS, PER_MASTER_UNIT, MASTER_
 _JERK_UNITS = _SPEED_UNITS | {PERCENT_OF_TIME, PERCENT_OF_TIME_MD}
 _MASTER_UNITS = {PER_MASTER_UNIT, MASTER_UNITS, PERCENT_OF_TIME_MD}
 _TIME_BASED = {SECONDS, MASTER_UNITS}
+
+_A = TypeVar("_A", Axis, Group)
 
 
 def runtime(ctx: ExecContext) -> MotionRuntime:
@@ -63,6 +66,13 @@ def failed(rt: MotionRuntime, ctl: list, result: StartResult) -> bool:
         return False
     fail(rt, ctl, result.error, result.exerr)
     return True
+
+
+def configured(rt: MotionRuntime, ctl: list, target: _A | None) -> _A | None:
+    """The axis or group an instruction names; None (error 11) when it is not configured."""
+    if target is None:
+        fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
+    return target
 
 
 def clear_on_prescan(ctl: list) -> None:

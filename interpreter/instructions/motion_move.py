@@ -22,6 +22,7 @@ from .motion_common import (
     TimeBased,
     begin,
     clear_on_prescan,
+    configured,
     dynamics,
     fail,
     failed,
@@ -39,17 +40,37 @@ _AT_REST = 1e-9
 
 
 def _axis(rt: MotionRuntime, ctl: list, axis: list) -> Axis | None:
-    ax = rt.axis(axis)
-    if ax is None:
-        fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
-        return None
-    rt.refresh(ax)
+    """The named axis with its limits read again from the tag; None (error 11) if unknown."""
+    ax = configured(rt, ctl, rt.axis(axis))
+    if ax is not None:
+        rt.refresh(ax)
     return ax
 
 
-def _merge(merge: object) -> MergeMode | None:
-    """MAM/MAJ Merge: Disabled 0 / Enabled 1 (Enabled takes over all motion of the axis)."""
-    return {0: MergeMode.DISABLED, 1: MergeMode.ALL}.get(whole(merge))
+def _move_dynamics(
+    rt: MotionRuntime, ctl: list, ax: Axis, first: int, speed: float, speed_units: int,
+    accel: float, accel_units: int, decel: float, decel_units: int, profile: int,
+    accel_jerk: float, decel_jerk: float, jerk_units: int, merge: int, allow_time_based: bool,
+) -> tuple[int, MergeMode, Dynamics | TimeBased] | None:  # fmt: skip
+    """The operands MAM and MAJ share, Speed .. Merge (`first` = faceplate index of Speed):
+    (profile shape, merge mode, dynamics), or None after reporting the first bad one."""
+    shape = whole(profile)
+    if shape not in (0, 1):
+        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, first + 6)
+        return None
+    # Merge: Disabled 0 / Enabled 1 (Enabled takes over all motion of the axis)
+    mm = {0: MergeMode.DISABLED, 1: MergeMode.ALL}.get(whole(merge))
+    if mm is None:
+        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, first + 10)
+        return None
+    dyn = dynamics(
+        ax, first, real(speed), speed_units, real(accel), accel_units, real(decel), decel_units,
+        shape == 1, real(accel_jerk), real(decel_jerk), jerk_units, allow_time_based,
+    )  # fmt: skip
+    if isinstance(dyn, StartResult):
+        failed(rt, ctl, dyn)
+        return None
+    return shape, mm, dyn
 
 
 # ------------------------------------------------------------------ MAM
@@ -78,21 +99,13 @@ def mam(
     if mt not in (0, 1):
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 2)
         return
-    shape = whole(profile)
-    if shape not in (0, 1):
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 10)
-        return
-    mm = _merge(merge)
-    if mm is None:
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 14)
-        return
-    dyn = dynamics(
-        ax, 4, real(speed), speed_units, real(accel), accel_units, real(decel), decel_units,
-        shape == 1, real(accel_jerk), real(decel_jerk), jerk_units, allow_time_based=True,
+    block = _move_dynamics(
+        rt, ctl, ax, 4, speed, speed_units, accel, accel_units, decel, decel_units, profile,
+        accel_jerk, decel_jerk, jerk_units, merge, allow_time_based=True,
     )  # fmt: skip
-    if isinstance(dyn, StartResult):
-        failed(rt, ctl, dyn)
+    if block is None:
         return
+    shape, mm, dyn = block
     if isinstance(dyn, TimeBased):  # a rest-to-rest move lasting the programmed time
         if whole(merge_speed) == 1:
             fail(rt, ctl, MotionError.MERGE_CURRENT_WITH_SECONDS)
@@ -161,22 +174,14 @@ def maj(
     ax = _axis(rt, ctl, axis)
     if ax is None:
         return
-    shape = whole(profile)
-    if shape not in (0, 1):
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 9)
-        return
-    mm = _merge(merge)
-    if mm is None:
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 13)
-        return
-    dyn = dynamics(
-        ax, 3, real(speed), speed_units, real(accel), accel_units, real(decel), decel_units,
-        shape == 1, real(accel_jerk), real(decel_jerk), jerk_units, allow_time_based=False,
+    block = _move_dynamics(
+        rt, ctl, ax, 3, speed, speed_units, accel, accel_units, decel, decel_units, profile,
+        accel_jerk, decel_jerk, jerk_units, merge, allow_time_based=False,
     )  # fmt: skip
-    if not isinstance(dyn, Dynamics):
-        assert isinstance(dyn, StartResult)  # MAJ has no time-based planning
-        failed(rt, ctl, dyn)
+    if block is None:
         return
+    shape, mm, dyn = block
+    assert isinstance(dyn, Dynamics)  # MAJ has no time-based planning
     r = ax.group.core.start_jog(
         ax.index, whole(direction), dyn.speed, dyn.accel, dyn.decel, shape, dyn.accel_jerk,
         dyn.decel_jerk, mm, whole(merge_speed), real(lock_position), whole(lock_direction),
@@ -245,9 +250,8 @@ def mgs(ctx: ExecContext, rung: bool, group: list, ctl: list, stop_mode: int) ->
     if not begin(ctl, rung):
         return
     rt = runtime(ctx)
-    g = rt.group(group)
+    g = configured(rt, ctl, rt.group(group))
     if g is None:
-        fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
         return
     sm = whole(stop_mode)
     if sm not in (0, 1, 2):

@@ -8,11 +8,10 @@ MSO/MSF/MAFR have no IP or PC bits.
 
 from __future__ import annotations
 
-from ..motion import MotionError
 from ..runtime.motion import Axis, MotionRuntime
 from ..runtime.motion_layout import set_bits
 from ..vm.context import ExecContext
-from .motion_common import begin, clear_on_prescan, fail, runtime
+from .motion_common import begin, clear_on_prescan, configured, runtime
 from .registry import implements, prescan
 
 
@@ -30,19 +29,12 @@ def _complete(rt: MotionRuntime, ax: Axis, ctl: list, handle: int) -> None:
     rt.after_update(g, done)
 
 
-def _axis(rt: MotionRuntime, ctl: list, axis: list) -> Axis | None:
-    ax = rt.axis(axis)
-    if ax is None:
-        fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
-    return ax
-
-
 @implements("MSO")
 def mso(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     if not begin(ctl, rung):
         return
     rt = runtime(ctx)
-    ax = _axis(rt, ctl, axis)
+    ax = configured(rt, ctl, rt.axis(axis))
     if ax is not None:
         _complete(rt, ax, ctl, ax.group.core.servo_on_axis(ax.index).handle)
 
@@ -52,7 +44,7 @@ def msf(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     if not begin(ctl, rung):
         return
     rt = runtime(ctx)
-    ax = _axis(rt, ctl, axis)
+    ax = configured(rt, ctl, rt.axis(axis))
     if ax is not None:
         _complete(rt, ax, ctl, ax.group.core.servo_off_axis(ax.index).handle)
 
@@ -63,7 +55,7 @@ def mafr(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     if not begin(ctl, rung):
         return
     rt = runtime(ctx)
-    ax = _axis(rt, ctl, axis)
+    ax = configured(rt, ctl, rt.axis(axis))
     if ax is not None:
         _complete(rt, ax, ctl, rt.token(ax.group))
 

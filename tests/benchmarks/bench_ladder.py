@@ -35,64 +35,65 @@ def _names(k: int) -> tuple[Callable[[int], str], Callable[[int], str], str, str
     return b, d, f"r{k % NR}", f"t{(k // 20) % NT}", f"c{(k // 20) % NC}"
 
 
-def ladder_program(rungs: int = 1000) -> str:
+def _program(rungs: int, timer: str, counter: str, first: str, rung: Callable[[int], str]) -> str:
+    """Declarations (timers and counters of the given types), the toggling first line, then
+    `rung(k)` for k = 1 .. rungs - 1."""
     decl = ["VAR"]
     decl += [f"  b{i} : BOOL;" for i in range(NB)]
     decl += [f"  d{i} : DINT;" for i in range(ND)]
     decl += [f"  r{i} : REAL;" for i in range(NR)]
-    decl += [f"  t{i} : TIMER;" for i in range(NT)]
-    decl += [f"  c{i} : COUNTER;" for i in range(NC)]
+    decl += [f"  t{i} : {timer};" for i in range(NT)]
+    decl += [f"  c{i} : {counter};" for i in range(NC)]
     decl += ["END_VAR"]
-    out = ["XIO(b0) OTE(b0);"]  # b0 toggles every scan: both rung states get exercised
-    for k in range(1, rungs):
-        b, d, r, t, c = _names(k)
-        if k % 20 == 0:
-            out.append(f"XIC({b(0)}) TON({t}, 100, 0);")
-        elif k % 20 == 10:
-            out.append(f"XIC(b0) CTU({c}, 1000, 0);")
-        else:
-            out.append([
-                f"XIC({b(0)}) XIO({b(1)}) OTE({b(2)});",
-                f"XIC({b(0)}) [XIC({b(1)}), XIO({b(2)}) XIC(b0)] OTE({b(3)});",
-                f"GRT({d(0)}, 50) MOV({d(0)}, {d(1)});",
-                f"XIC(b0) ADD({d(0)}, 1, {d(0)});",
-                f"[XIC({b(0)}), LES({d(0)}, 10)] OTL({b(1)});",
-                f"XIC({t}.DN) OTU({b(1)});",
-                f"XIO({b(0)}) XIC({b(1)}) [OTE({b(2)}), MOV({d(0)}, {r})];",
-                f"EQU({d(0)}, {d(1)}) [XIC({b(1)}) OTE({b(2)}), XIO({b(3)}) [XIC(b0), GEQ({r}, 2.5)] OTE({b(4)})];",
-            ][k % 8])
-    return "\n".join(decl + out) + "\n"
+    return "\n".join(decl + [first] + [rung(k) for k in range(1, rungs)]) + "\n"
+
+
+def _ladder_rung(k: int) -> str:
+    b, d, r, t, c = _names(k)
+    if k % 20 == 0:
+        return f"XIC({b(0)}) TON({t}, 100, 0);"
+    if k % 20 == 10:
+        return f"XIC(b0) CTU({c}, 1000, 0);"
+    return [
+        f"XIC({b(0)}) XIO({b(1)}) OTE({b(2)});",
+        f"XIC({b(0)}) [XIC({b(1)}), XIO({b(2)}) XIC(b0)] OTE({b(3)});",
+        f"GRT({d(0)}, 50) MOV({d(0)}, {d(1)});",
+        f"XIC(b0) ADD({d(0)}, 1, {d(0)});",
+        f"[XIC({b(0)}), LES({d(0)}, 10)] OTL({b(1)});",
+        f"XIC({t}.DN) OTU({b(1)});",
+        f"XIO({b(0)}) XIC({b(1)}) [OTE({b(2)}), MOV({d(0)}, {r})];",
+        f"EQU({d(0)}, {d(1)}) [XIC({b(1)}) OTE({b(2)}), XIO({b(3)}) [XIC(b0), GEQ({r}, 2.5)] OTE({b(4)})];",
+    ][k % 8]
+
+
+def _st_rung(k: int) -> str:
+    """`_ladder_rung(k)` as Structured Text (timers and counters as TONR/CTUD blocks)."""
+    b, d, r, t, c = _names(k)
+    if k % 20 == 0:
+        return f"{t}.TimerEnable := {b(0)}; {t}.PRE := 100; TONR({t});"
+    if k % 20 == 10:
+        return f"{c}.CUEnable := b0; {c}.PRE := 1000; CTUD({c});"
+    return [
+        f"{b(2)} := {b(0)} AND NOT {b(1)};",
+        f"{b(3)} := {b(0)} AND ({b(1)} OR (NOT {b(2)} AND b0));",
+        f"IF {d(0)} > 50 THEN {d(1)} := {d(0)}; END_IF;",
+        f"IF b0 THEN {d(0)} := {d(0)} + 1; END_IF;",
+        f"IF {b(0)} OR {d(0)} < 10 THEN {b(1)} := 1; END_IF;",
+        f"IF {t}.DN THEN {b(1)} := 0; END_IF;",
+        f"IF NOT {b(0)} AND {b(1)} THEN {b(2)} := 1; {r} := {d(0)}; ELSE {b(2)} := 0; END_IF;",
+        f"IF {d(0)} = {d(1)} THEN {b(2)} := {b(1)}; {b(4)} := NOT {b(3)} AND (b0 OR {r} >= 2.5);"
+        f" ELSE {b(2)} := 0; {b(4)} := 0; END_IF;",
+    ][k % 8]
+
+
+def ladder_program(rungs: int = 1000) -> str:
+    # b0 toggles every scan: both rung states get exercised
+    return _program(rungs, "TIMER", "COUNTER", "XIO(b0) OTE(b0);", _ladder_rung)
 
 
 def st_program(rungs: int = 1000) -> str:
-    """The same logic as Structured Text (timers and counters as TONR/CTUD blocks)."""
-    decl = ["VAR"]
-    decl += [f"  b{i} : BOOL;" for i in range(NB)]
-    decl += [f"  d{i} : DINT;" for i in range(ND)]
-    decl += [f"  r{i} : REAL;" for i in range(NR)]
-    decl += [f"  t{i} : FBD_TIMER;" for i in range(NT)]
-    decl += [f"  c{i} : FBD_COUNTER;" for i in range(NC)]
-    decl += ["END_VAR"]
-    out = ["b0 := NOT b0;"]
-    for k in range(1, rungs):
-        b, d, r, t, c = _names(k)
-        if k % 20 == 0:
-            out.append(f"{t}.TimerEnable := {b(0)}; {t}.PRE := 100; TONR({t});")
-        elif k % 20 == 10:
-            out.append(f"{c}.CUEnable := b0; {c}.PRE := 1000; CTUD({c});")
-        else:
-            out.append([
-                f"{b(2)} := {b(0)} AND NOT {b(1)};",
-                f"{b(3)} := {b(0)} AND ({b(1)} OR (NOT {b(2)} AND b0));",
-                f"IF {d(0)} > 50 THEN {d(1)} := {d(0)}; END_IF;",
-                f"IF b0 THEN {d(0)} := {d(0)} + 1; END_IF;",
-                f"IF {b(0)} OR {d(0)} < 10 THEN {b(1)} := 1; END_IF;",
-                f"IF {t}.DN THEN {b(1)} := 0; END_IF;",
-                f"IF NOT {b(0)} AND {b(1)} THEN {b(2)} := 1; {r} := {d(0)}; ELSE {b(2)} := 0; END_IF;",
-                f"IF {d(0)} = {d(1)} THEN {b(2)} := {b(1)}; {b(4)} := NOT {b(3)} AND (b0 OR {r} >= 2.5);"
-                f" ELSE {b(2)} := 0; {b(4)} := 0; END_IF;",
-            ][k % 8])
-    return "\n".join(decl + out) + "\n"
+    """The same logic as Structured Text."""
+    return _program(rungs, "FBD_TIMER", "FBD_COUNTER", "b0 := NOT b0;", _st_rung)
 
 
 def controller(text: str, name: str) -> Controller:

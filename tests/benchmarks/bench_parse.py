@@ -9,7 +9,6 @@ lines on the 2-core reference machine.
 
 from __future__ import annotations
 
-import gc
 import sys
 import tempfile
 import time
@@ -17,7 +16,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))  # run from anywhere
 
-from interpreter.runtime.loader import load  # noqa: E402
+from load_timing import best_load  # noqa: E402
+
 from interpreter.syntax.st_parser import _parser  # noqa: E402
 
 TARGET_S = 2.0
@@ -79,14 +79,7 @@ def bench(lines: int = 20_000, repeat: int = 3) -> dict[str, float]:
     with tempfile.TemporaryDirectory() as d:
         path = Path(d) / "bench.st"
         path.write_text(text)
-        best = float("inf")
-        loaded = None
-        for _ in range(repeat):
-            del loaded  # free the previous result outside the timed region
-            gc.collect()
-            t0 = time.perf_counter()
-            loaded = load([path])
-            best = min(best, time.perf_counter() - t0)
+        best, loaded = best_load(path, repeat)
         assert not loaded.diagnostics, loaded.diagnostics[:3]
     return {"lines": n_lines, "bytes": len(text.encode()), "seconds": best, "lines_per_s": n_lines / best,
             "lark_ratio": lark_ratio(text)}

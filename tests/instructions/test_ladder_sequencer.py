@@ -6,20 +6,10 @@ import pytest
 
 from interpreter.instructions import ladder_sequencer as sq
 from interpreter.instructions.ladder_timers_counters import K_LEN, K_POS
-from interpreter.semantics.types import DINT, StructType, TypeTable
+from interpreter.semantics.types import DINT
 from interpreter.vm.context import ExecContext, MajorFault
 from interpreter.vm.refs import ArrayRef, Ref
-from interpreter.vm.values import default_value
-
-
-def _ctl(**members: object) -> list:
-    t = TypeTable().get("CONTROL")
-    assert isinstance(t, StructType)
-    v = default_value(t)
-    assert isinstance(v, list)
-    for name, value in members.items():
-        v[t.index[name.upper()]] = value
-    return v
+from tests.instructions.structs import new_control
 
 
 def _arr(values: list) -> ArrayRef:
@@ -28,7 +18,7 @@ def _arr(values: list) -> ArrayRef:
 
 def test_sqo_steps_on_each_rising_edge_and_wraps_to_step_1() -> None:
     steps = _arr([0, 0x01, 0x02, 0x04])  # step 0 is the start-up position
-    ctl, out = _ctl(LEN=3), Ref([0xF0], 0, DINT)
+    ctl, out = new_control(LEN=3), Ref([0xF0], 0, DINT)
     ctx = ExecContext()
     seen = []
     for rung in [True, True, False, True, False, True, False, True]:
@@ -48,7 +38,7 @@ def test_sqo_steps_on_each_rising_edge_and_wraps_to_step_1() -> None:
 
 
 def test_sqo_prescan_keeps_a_true_rung_from_stepping() -> None:
-    steps, ctl, out = _arr([0, 7]), _ctl(), Ref([0], 0, DINT)
+    steps, ctl, out = _arr([0, 7]), new_control(), Ref([0], 0, DINT)
     sq.sqo_prescan(ExecContext(), True, steps, -1, out, ctl, 1, 0)
     assert (ctl[K_LEN], ctl[K_POS], ctl[sq.EN]) == (1, 0, 1)
     sq.sqo(ExecContext(), True, steps, -1, out, ctl)
@@ -57,17 +47,17 @@ def test_sqo_prescan_keeps_a_true_rung_from_stepping() -> None:
 
 
 def test_sqo_invalid_length_sets_er_and_step_past_array_faults() -> None:
-    ctl, out = _ctl(LEN=0), Ref([5], 0, DINT)
+    ctl, out = new_control(LEN=0), Ref([5], 0, DINT)
     sq.sqo(ExecContext(), True, _arr([0, 1]), -1, out, ctl)
     assert ctl[sq.ER] == 1 and out.get() == 5
     with pytest.raises(MajorFault) as e:
-        sq.sqo(ExecContext(), True, _arr([0, 1]), -1, out, _ctl(LEN=3, POS=1))  # step 2 of [0, 1]
+        sq.sqo(ExecContext(), True, _arr([0, 1]), -1, out, new_control(LEN=3, POS=1))  # step 2 of [0, 1]
     assert (e.value.type, e.value.code) == (4, 20)
 
 
 def test_sqi_compares_masked_source_with_the_current_step() -> None:
     steps, ctx = _arr([0, 3, 5]), ExecContext()
-    ctl = _ctl(LEN=2, POS=2)
+    ctl = new_control(LEN=2, POS=2)
     assert sq.sqi(ctx, True, steps, 0xFF, 5, ctl) is True
     assert sq.sqi(ctx, True, steps, 0xFF, 4, ctl) is False
     # mask 16#FE ignores bit 0: 4 AND 16#FE = 4 = 5 AND 16#FE
@@ -78,7 +68,7 @@ def test_sqi_compares_masked_source_with_the_current_step() -> None:
 
 
 def test_sql_loads_the_step_every_true_scan() -> None:
-    table, ctl = [0, 0, 0, 0], _ctl(LEN=3)
+    table, ctl = [0, 0, 0, 0], new_control(LEN=3)
     ctx = ExecContext()
     sq.sql(ctx, True, _arr(table), 7, ctl)
     assert table == [0, 7, 0, 0] and ctl[K_POS] == 1

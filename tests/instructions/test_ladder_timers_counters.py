@@ -6,22 +6,11 @@ Expected bit tables follow the 1756-RM003 flow charts (decision 0030).
 from __future__ import annotations
 
 from interpreter.instructions import ladder_timers_counters as tc
-from interpreter.semantics.types import StructType, TypeTable
 from interpreter.vm.context import ExecContext
-from interpreter.vm.values import default_value
+from tests.instructions.structs import new_struct
 
 MAX = 2**31 - 1
 MIN = -(2**31)
-
-
-def _new(type_name: str, **members: object) -> list:
-    t = TypeTable().get(type_name)
-    assert isinstance(t, StructType)
-    v = default_value(t)
-    assert isinstance(v, list)
-    for name, value in members.items():
-        v[t.index[name.upper()]] = value
-    return v
 
 
 def _run(fn, ctx: ExecContext, t: list, steps: list[tuple[float, bool]]) -> list[tuple[int, int, int, int]]:  # noqa: ANN001
@@ -36,7 +25,7 @@ def _run(fn, ctx: ExecContext, t: list, steps: list[tuple[float, bool]]) -> list
 
 # ------------------------------------------------------------------ TON
 def test_ton_bit_table_10ms_scans() -> None:
-    t = _new("TIMER", PRE=30)
+    t = new_struct("TIMER", PRE=30)
     rec = _run(tc.ton, ExecContext(), t, [(0, True), (10, True), (20, True), (30, True), (40, True), (50, False)])
     assert rec == [
         (0, 1, 1, 0),   # first true scan: EN, TT set, time remembered, ACC not advanced
@@ -49,14 +38,14 @@ def test_ton_bit_table_10ms_scans() -> None:
 
 
 def test_ton_acc_is_not_clamped_when_a_scan_overshoots() -> None:
-    t = _new("TIMER", PRE=25)
+    t = new_struct("TIMER", PRE=25)
     rec = _run(tc.ton, ExecContext(), t, [(0, True), (10, True), (20, True), (30, True)])
     # 0, 10, 20, then 20 + 10 = 30 >= 25: DN with ACC 30 (Logix adds the whole elapsed time)
     assert rec[-1] == (30, 1, 0, 1)
 
 
 def test_ton_false_rung_mid_timing_restarts_from_zero() -> None:
-    t = _new("TIMER", PRE=100)
+    t = new_struct("TIMER", PRE=100)
     ctx = ExecContext()
     _run(tc.ton, ctx, t, [(0, True), (10, True), (20, True)])  # ACC 20
     rec = _run(tc.ton, ctx, t, [(30, False), (40, True), (50, True)])
@@ -65,7 +54,7 @@ def test_ton_false_rung_mid_timing_restarts_from_zero() -> None:
 
 
 def test_ton_sub_millisecond_scans_carry_the_fraction() -> None:
-    t = _new("TIMER", PRE=100)
+    t = new_struct("TIMER", PRE=100)
     ctx = ExecContext(scan_period_ms=0.4)
     rec = _run(tc.ton, ctx, t, [(0.4 * k, True) for k in range(9)])
     # after the first scan, k further scans = 0.4 k ms: ACC = floor(0.4 k)
@@ -74,14 +63,14 @@ def test_ton_sub_millisecond_scans_carry_the_fraction() -> None:
 
 
 def test_ton_acc_saturates_at_dint_max() -> None:
-    t = _new("TIMER", PRE=MAX, ACC=MAX - 5, EN=1, TT=1, LastTime=0.0)
+    t = new_struct("TIMER", PRE=MAX, ACC=MAX - 5, EN=1, TT=1, LastTime=0.0)
     rec = _run(tc.ton, ExecContext(), t, [(20, True)])
     # MAX - 5 + 20 overflows: ACC = 2147483647 = PRE -> done
     assert rec == [(MAX, 1, 0, 1)]
 
 
 def test_ton_prescan_writes_pseudo_operands_then_clears() -> None:
-    t = _new("TIMER", PRE=7, ACC=3, EN=1, TT=1, DN=1)
+    t = new_struct("TIMER", PRE=7, ACC=3, EN=1, TT=1, DN=1)
     tc.ton_prescan(ExecContext(), True, t, 500, 40)
     # Preset 500 written into PRE; prescan clears EN TT DN and ACC (the Accum 40 included)
     assert (t[tc.PRE], t[tc.ACC], t[tc.EN], t[tc.TT], t[tc.DN]) == (500, 0, 0, 0, 0)
@@ -92,7 +81,7 @@ def test_ton_prescan_writes_pseudo_operands_then_clears() -> None:
 
 # ------------------------------------------------------------------ TOF
 def test_tof_bit_table_10ms_scans() -> None:
-    t = _new("TIMER")
+    t = new_struct("TIMER")
     ctx = ExecContext()
     tc.tof_prescan(ctx, True, t, 20, 0)
     assert (t[tc.PRE], t[tc.ACC]) == (20, 20)  # prescan: ACC = PRE, bits clear
@@ -108,7 +97,7 @@ def test_tof_bit_table_10ms_scans() -> None:
 
 
 def test_tof_true_rung_during_timing_restarts() -> None:
-    t = _new("TIMER", PRE=50)
+    t = new_struct("TIMER", PRE=50)
     ctx = ExecContext()
     _run(tc.tof, ctx, t, [(0, True), (10, False), (20, False)])  # ACC 10, timing
     rec = _run(tc.tof, ctx, t, [(30, True), (40, False), (50, False)])
@@ -118,7 +107,7 @@ def test_tof_true_rung_during_timing_restarts() -> None:
 
 # ------------------------------------------------------------------ RTO
 def test_rto_retains_acc_over_a_false_rung_until_res() -> None:
-    t = _new("TIMER", PRE=30)
+    t = new_struct("TIMER", PRE=30)
     ctx = ExecContext()
     rec = _run(tc.rto, ctx, t, [(0, True), (10, True), (20, False), (30, True), (40, True), (50, True), (60, False)])
     assert rec == [
@@ -135,7 +124,7 @@ def test_rto_retains_acc_over_a_false_rung_until_res() -> None:
 
 
 def test_rto_prescan_keeps_acc() -> None:
-    t = _new("TIMER", PRE=30, ACC=12, EN=1, TT=1, DN=0)
+    t = new_struct("TIMER", PRE=30, ACC=12, EN=1, TT=1, DN=0)
     tc.rto_prescan(ExecContext(), True, t, None, None)
     assert (t[tc.ACC], t[tc.EN], t[tc.TT], t[tc.DN]) == (12, 0, 0, 0)
 
@@ -150,7 +139,7 @@ def _counts(fn, c: list, rungs: list[bool]) -> list[tuple[int, int, int]]:  # no
 
 
 def test_ctu_counts_rising_edges_only_and_not_the_start_up_rung() -> None:
-    c = _new("COUNTER")
+    c = new_struct("COUNTER")
     tc.ctu_prescan(ExecContext(), True, c, 2, 0)
     assert (c[tc.C_PRE], c[tc.CU]) == (2, 1)
     rec = _counts(tc.ctu, c, [True, False, True, True, False, True, True])
@@ -159,28 +148,28 @@ def test_ctu_counts_rising_edges_only_and_not_the_start_up_rung() -> None:
 
 
 def test_ctu_overflow_wraps_and_sets_ov() -> None:
-    c = _new("COUNTER", PRE=10, ACC=MAX)
+    c = new_struct("COUNTER", PRE=10, ACC=MAX)
     tc.ctu(ExecContext(), True, c)
     # 2147483647 + 1 wraps to -2147483648; OV set; DN stays set while OV is set
     assert (c[tc.C_ACC], c[tc.OV], c[tc.UN], c[tc.C_DN]) == (MIN, 1, 0, 1)
 
 
 def test_ctd_underflow_wraps_and_sets_un() -> None:
-    c = _new("COUNTER", PRE=0, ACC=MIN)
+    c = new_struct("COUNTER", PRE=0, ACC=MIN)
     tc.ctd(ExecContext(), True, c)
     # -2147483648 - 1 wraps to 2147483647; UN set; DN clear while UN is set
     assert (c[tc.C_ACC], c[tc.OV], c[tc.UN], c[tc.C_DN]) == (MAX, 0, 1, 0)
 
 
 def test_counting_back_over_the_wrap_undoes_the_flag() -> None:
-    c = _new("COUNTER", PRE=5, ACC=MAX, UN=1)
+    c = new_struct("COUNTER", PRE=5, ACC=MAX, UN=1)
     tc.ctu(ExecContext(), True, c)
     # the earlier underflow is undone: UN cleared, OV not set; -2147483648 < 5: DN clear
     assert (c[tc.C_ACC], c[tc.OV], c[tc.UN], c[tc.C_DN]) == (MIN, 0, 0, 0)
 
 
 def test_ctd_counts_down_and_dn_follows_acc() -> None:
-    c = _new("COUNTER")
+    c = new_struct("COUNTER")
     tc.ctd_prescan(ExecContext(), True, c, 0, 2)
     assert (c[tc.C_PRE], c[tc.C_ACC], c[tc.CD]) == (0, 2, 1)
     rec = _counts(tc.ctd, c, [False, True, False, True, False, True])
@@ -189,7 +178,7 @@ def test_ctd_counts_down_and_dn_follows_acc() -> None:
 
 
 def test_ctu_and_ctd_share_one_counter() -> None:
-    c = _new("COUNTER", PRE=1)
+    c = new_struct("COUNTER", PRE=1)
     ctx = ExecContext()
     tc.ctu(ctx, True, c)  # 1
     tc.ctd(ctx, True, c)  # 0 (CD edge is separate from CU)
@@ -199,14 +188,14 @@ def test_ctu_and_ctd_share_one_counter() -> None:
 
 # ------------------------------------------------------------------ RES
 def test_res_counter_and_control_and_false_rung() -> None:
-    c = _new("COUNTER", PRE=3, ACC=9, CU=1, CD=1, DN=1, OV=1, UN=1)
+    c = new_struct("COUNTER", PRE=3, ACC=9, CU=1, CD=1, DN=1, OV=1, UN=1)
     tc.res(ExecContext(), False, c)
     assert c[tc.C_ACC] == 9  # false rung: no action
     tc.res(ExecContext(), True, c)
-    assert c == _new("COUNTER", PRE=3)  # PRE kept, everything else cleared
-    k = _new("CONTROL", LEN=5, POS=3, EN=1, EU=1, DN=1, EM=1, ER=1, UL=1, IN=1, FD=1)
+    assert c == new_struct("COUNTER", PRE=3)  # PRE kept, everything else cleared
+    k = new_struct("CONTROL", LEN=5, POS=3, EN=1, EU=1, DN=1, EM=1, ER=1, UL=1, IN=1, FD=1)
     tc.res(ExecContext(), True, k)
-    assert k == _new("CONTROL", LEN=5)
-    t = _new("TIMER", PRE=4, ACC=4, EN=1, DN=1, ACCFraction=0.5)
+    assert k == new_struct("CONTROL", LEN=5)
+    t = new_struct("TIMER", PRE=4, ACC=4, EN=1, DN=1, ACCFraction=0.5)
     tc.res(ExecContext(), True, t)
     assert (t[tc.PRE], t[tc.ACC], t[tc.EN], t[tc.DN], t[tc.FRAC]) == (4, 0, 0, 0, 0.0)

@@ -3,19 +3,13 @@
 from __future__ import annotations
 
 from interpreter.instructions import fbd_timers as fb
-from interpreter.semantics.types import StructType, TypeTable
 from interpreter.vm.context import ExecContext
-from interpreter.vm.values import default_value
+from tests.instructions.structs import new_struct, struct_type
 
 
 def _new(type_name: str, **members: object) -> tuple[list, dict[str, int]]:
-    t = TypeTable().get(type_name)
-    assert isinstance(t, StructType)
-    v = default_value(t)
-    assert isinstance(v, list)
-    for name, value in members.items():
-        v[t.index[name.upper()]] = value
-    return v, t.index
+    """The value and its member index (tests set members by name between executions)."""
+    return new_struct(type_name, **members), struct_type(type_name).index
 
 
 def _run(fn, ctx: ExecContext, v: list, times: list[float]) -> list[tuple[int, int, int, int]]:
