@@ -15,7 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))  # run from anywhere
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))  # run from anywhere
 
 from load_timing import best_load  # noqa: E402
 
@@ -135,7 +136,7 @@ def bench(megabytes: float = 2.0, repeat: int = 3) -> dict[str, float]:
         for _ in range(repeat):  # the whole command, as a user runs it: start-up, grammars, exit
             t0 = time.perf_counter()
             done = subprocess.run([sys.executable, "-m", "interpreter.cli", "check", str(path)],
-                                  capture_output=True, text=True, check=False)
+                                  capture_output=True, text=True, check=False, cwd=ROOT)
             cli = min(cli, time.perf_counter() - t0)
             assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     rungs = text.count("<Rung ")
