@@ -16,9 +16,8 @@ def test_mixer_checks_clean(capsys: pytest.CaptureFixture[str]) -> None:
     capsys.readouterr()
     code = main(["check", str(MIXER), "--format", "json"])
     diags = json.loads(capsys.readouterr().out)
-    # Apart from ladder instructions whose implementation is not merged yet (U304), clean.
-    assert [d for d in diags if d["code"] != "U304"] == []
-    assert code == (1 if diags else 0)
+    assert diags == []
+    assert code == 0
 
 
 def test_mixer_runs(capsys: pytest.CaptureFixture[str]) -> None:
@@ -26,8 +25,6 @@ def test_mixer_runs(capsys: pytest.CaptureFixture[str]) -> None:
     code = main(["run", str(MIXER), "--scans", "1000", "--json", "--watch", "Step", "--watch", "Level",
                  "--watch", "ValveB.IsOpen", "--watch", "Batches"])
     out = capsys.readouterr()
-    if code == 2 and "cannot run in this version" in out.err or code == 1 and "U304" in out.err:
-        pytest.skip("the ladder compiler or ladder TON is not merged yet")
     assert code == 0, out.err
     # Plant (periodic, 10 ms) runs before Sequence (continuous, 1 ms scans). Sequence opens
     # A at t = 0, Plant adds 0.5 % at t = 10, 20, ... so Level = 40 at t = 800 and Step

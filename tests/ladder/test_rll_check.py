@@ -322,13 +322,3 @@ def test_unsupported_suffix_names_both_program_types(st) -> None:
     assert r.code == 2
     assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1
     assert "expected .st or .rll" in r.err
-
-
-def test_run_on_ladder_is_a_clean_input_error_until_the_compiler_lands(st) -> None:
-    p = st.write("lad.rll", HEADER + "XIC(a)OTE(b);\n")
-    r = st.cli("run", str(p), "--scans", "1")
-    if r.code == 0:
-        pytest.skip("ladder routines run now")
-    assert r.code == 2
-    assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1
-    assert "lad.rll" in r.err

@@ -112,8 +112,7 @@ def test_every_st_code_has_a_fixture() -> None:
 def test_recognised_but_not_executable(st) -> None:
     from interpreter.instructions.registry import lookup
 
-    if lookup("MDOC", "st") is not None:
-        pytest.skip("MDOC is executable now")
+    assert lookup("MDOC", "st") is None  # output cams are a later issue: until then MDOC is U304
     _, diags = _codes(st, "IF b THEN MDOC(ax, 0, mc, All); END_IF;\n")
     assert [d["code"] for d in diags] == ["U304"]
 
