@@ -227,6 +227,16 @@ class Translator:
         assert isinstance(p, _Place), p
         return p
 
+    def assign(self, p: _Place, value: str) -> None:
+        """Emit the store of an elementary value into a place (a bit place merges the bit)."""
+        target = f"{p.container}[{p.key}]"
+        if p.bit is None:
+            self.line(f"{target} = {value}")
+            return
+        pt = p.owner
+        assert pt is not None
+        self.line(f"{target} = _setbit({target}, {p.bit}, {value}, {pt.bits}, {pt.signed})")
+
     def fresh(self) -> str:
         self.tmp += 1
         return f"_t{self.tmp}"
@@ -313,14 +323,8 @@ class Translator:
                 self.line(f"_sset({p.container}[{p.key}], {v.expr})")
             elif not isinstance(t, Elementary):  # structure or array parameter: copy the value
                 self.line(f"_cpy({p.container}[{p.key}], {v.expr})")
-            elif p.bit is not None:
-                pt = p.owner
-                assert pt is not None
-                self.line(
-                    f"{p.container}[{p.key}] = _setbit({p.container}[{p.key}], {p.bit}, {v.expr}, {pt.bits}, {pt.signed})"
-                )
             else:
-                self.line(f"{p.container}[{p.key}] = {conv_expr(v.expr, v.type, t)}")
+                self.assign(p, v.expr if p.bit is not None else conv_expr(v.expr, v.type, t))
         elif op is Op.REF:
             p = self.pop_place()
             t = arg  # type: ignore[assignment]
@@ -448,14 +452,7 @@ class Translator:
             p = self.pop_place()
             tname = self.const_name(arg)
             self.line(f"ctx.site = {site}")  # an overflow records minor fault 4/4 here
-            if p.bit is not None:
-                pt = p.owner
-                assert pt is not None
-                self.line(
-                    f"{p.container}[{p.key}] = _setbit({p.container}[{p.key}], {p.bit}, _stf(ctx, {v.expr}, {tname}), {pt.bits}, {pt.signed})"
-                )
-            else:
-                self.line(f"{p.container}[{p.key}] = _stf(ctx, {v.expr}, {tname})")
+            self.assign(p, f"_stf(ctx, {v.expr}, {tname})")
         elif op is Op.SETRV:
             vals = [self.pop_val().expr for _ in range(arg)][::-1]
             self.line(f"ctx.rv = [{', '.join(vals)}]")
