@@ -25,6 +25,13 @@ _DIGITS = re.compile(r"[0-9]+(?![A-Za-z0-9_])")
 _NUMBER = re.compile(r"[0-9][0-9_]*(?:\.[0-9][0-9_]*)?(?![A-Za-z0-9_.#])")
 _IDENT_START = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
 _DIGIT = frozenset("0123456789")
+_BLANK = frozenset(" \t\r\n\f")
+# A binary operator after blanks; `=>` and `:=` (named call arguments) are left to the grammar.
+_BINARY = re.compile(r"[ \t\r\n\f]*(<>|<=|>=|=(?!>)|<|>|\+|-|\*(?!\*)|/|&|(?:AND|OR|XOR|MOD)(?![A-Za-z0-9_]))", re.I)
+_PRECEDENCE = {"OR": 1, "XOR": 2, "AND": 3, "&": 3, "=": 4, "<>": 4, "<": 5, "<=": 5, ">": 5, ">=": 5,
+               "+": 6, "-": 6, "*": 7, "/": 7, "MOD": 7}
+_NOT = re.compile(r"NOT(?![A-Za-z0-9_])", re.I)
+_POW = re.compile(r"[ \t\r\n\f]*\*\*")
 
 
 class _GiveUp(Exception):
@@ -39,8 +46,17 @@ class _Scanner:
         self.end = len(text)
         self.i = 0
         self.line, self.col = line, col
-        self.newlines = [k for k, ch in enumerate(text) if ch == "\n"] if "\n" in text else None
         self.plain_name = plain_name
+        # L5X <Text> holds the rung between newlines: when the rung itself is on one line,
+        # positions are a fixed offset from that line's start (col = self.col + offset).
+        lead = _BLANKS.match(text).end()  # type: ignore[union-attr]
+        if text.find("\n", lead, len(text.rstrip(" \t\r\n\f"))) < 0:
+            self.newlines = None
+            nl = text.rfind("\n", 0, lead)
+            if nl >= 0:
+                self.line, self.col = line + text.count("\n", 0, lead), -nl
+        else:
+            self.newlines = [k for k, ch in enumerate(text) if ch == "\n"]
 
     # ------------------------------------------------------------ positions
     def at(self, off: int) -> tuple[int, int]:
@@ -60,7 +76,13 @@ class _Scanner:
 
     def skip(self) -> str:
         """Skip blanks; the character there ('' at the end)."""
-        self.i = i = _BLANKS.match(self.text, self.i).end()  # type: ignore[union-attr]
+        i = self.i
+        if i >= self.end:
+            return ""
+        ch = self.text[i]
+        if ch not in _BLANK:  # exports rarely put blanks between tokens
+            return ch
+        self.i = i = _BLANKS.match(self.text, i).end()  # type: ignore[union-attr]
         return self.text[i] if i < self.end else ""
 
     # ------------------------------------------------------------ rung structure
@@ -137,15 +159,72 @@ class _Scanner:
         if ch == "?":
             self.i += 1
             return n.Placeholder(self.span(self.i - 1, self.i))
-        if ch == "-" and self.text[self.i + 1 : self.i + 2] in _DIGIT:  # `-5`: unary minus, as the grammar reads it
+        return self.expr(0)
+
+    # Expressions by precedence climbing over st.lark's levels: OR < XOR < AND/& < = <> <
+    # < <= > >= < + - < * / MOD, all left-associative; then NOT, unary - and +, ** and primaries.
+    def expr(self, min_prec: int) -> n.Expr:
+        left = self.not_expr()
+        while True:
+            m = _BINARY.match(self.text, self.i)
+            if m is None:
+                return left
+            op = m.group(1).upper()
+            prec = _PRECEDENCE[op]
+            if prec < min_prec:
+                return left
+            self.i = m.end()
+            right = self.expr(prec + 1)
+            left = n.Binary("AND" if op == "&" else op, left, right, _join(left.span, right.span))
+
+    def not_expr(self) -> n.Expr:
+        self.skip()
+        start = self.i
+        m = _NOT.match(self.text, start)
+        if m is None:
+            return self.neg_expr()
+        self.i = m.end()
+        operand = self.not_expr()
+        return n.Unary("NOT", operand, _join(self.span(start, start), operand.span))
+
+    def neg_expr(self) -> n.Expr:
+        ch = self.skip()
+        if ch == "-":
             start = self.i
             self.i += 1
-            value = self.number()
-            return n.Unary("-", value, self.span(start, self.i))
-        if ch in _DIGIT:
+            operand = self.neg_expr()
+            return n.Unary("-", operand, _join(self.span(start, start), operand.span))
+        if ch == "+":  # unary plus: the operand itself, as the grammar's unary_plus
+            self.i += 1
+            return self.neg_expr()
+        left = self.primary()
+        while True:
+            m = _POW.match(self.text, self.i)
+            if m is None:
+                return left
+            self.i = m.end()
+            if self.skip() == "-":  # `a ** -b`: only a primary may follow the minus
+                start = self.i
+                self.i += 1
+                self.skip()
+                operand = self.primary()
+                right: n.Expr = n.Unary("-", operand, _join(self.span(start, start), operand.span))
+            else:
+                right = self.primary()
+            left = n.Binary("**", left, right, _join(left.span, right.span))
+
+    def primary(self) -> n.Expr:
+        ch = self.skip()
+        if ch == "(":  # parentheses leave no node and no span of their own
+            self.i += 1
+            inner = self.expr(0)
+            if self.skip() != ")":
+                raise _GiveUp
+            self.i += 1
+            return inner
+        if ch in _DIGIT and ch:
             return self.number()
         return self.reference()
-
     def number(self) -> n.Literal:
         m = _NUMBER.match(self.text, self.i)
         if m is None:
@@ -162,8 +241,12 @@ class _Scanner:
         m = self.plain_name.match(text, start)
         if m is None or (m.end() < self.end and text[m.end()] in ":\\"):
             raise _GiveUp  # reserved word, qualified name, not a name at all
-        node: n.Expr = n.Name(m.group(), self.span(start, m.end()))
+        name = n.Name(m.group(), self.span(start, m.end()))
         self.i = m.end()
+        if self.skip() == "(":  # a function call (`ABS(x)` in CPT)
+            return self.call(name)
+        self.i = m.end()
+        node: n.Expr = name
         first = self.at(start)
         while self.i < self.end:
             ch = text[self.i]
@@ -186,8 +269,7 @@ class _Scanner:
                 self.i += 1
                 indices: list[n.Expr] = []
                 while True:
-                    c = self.skip()
-                    indices.append(self.number() if c in _DIGIT and c else self.reference())
+                    indices.append(self.expr(0))
                     c = self.skip()
                     self.i += 1
                     if c == "]":
@@ -199,6 +281,29 @@ class _Scanner:
             else:
                 break
         return node
+
+
+    def call(self, name: n.Name) -> n.Call:
+        """`NAME(arg, ...)` with positional arguments; its span ends with the last argument."""
+        self.i += 1
+        args: list[n.Arg] = []
+        if self.skip() != ")":
+            while True:
+                value = self.expr(0)
+                args.append(n.Arg(value, None, value.span))
+                ch = self.skip()
+                if ch == ")":
+                    break
+                if ch != ",":
+                    raise _GiveUp  # `:=` and `=>` arguments, errors
+                self.i += 1
+        self.i += 1
+        end = args[-1].span if args else name.span
+        return n.Call(name.ident, args, name.span.to(end), name.span)
+
+
+def _join(first: n.Span, last: n.Span) -> n.Span:
+    return n.Span(first.line, first.col, last.end_line, last.end_col)
 
 
 def scan_rung(text: str, line: int, col: int, plain_name: re.Pattern[str]) -> n.Rung | None:
