@@ -412,8 +412,9 @@ class _Reader:
             text = text_e.text
             off = text_e.text_offset if text_e.text_offset >= 0 else text_e.offset
             line, col = self.pos.at(off)
+            label = f"{where}, rung {number}"
             for k in range(text.count("\n") + 1):
-                self.project.context.setdefault(line + k, f"{where}, rung {number}")
+                self.project.context.setdefault(line + k, label)
             rung, diags = parse_rung(text, self.path, number, line, col)
             self.diags.extend(diags)
             if rung is not None:

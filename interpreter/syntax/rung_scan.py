@@ -159,6 +159,15 @@ class _Scanner:
         if ch == "?":
             self.i += 1
             return n.Placeholder(self.span(self.i - 1, self.i))
+        if ch in _IDENT_START or ch in _DIGIT:  # most operands are one tag or one number
+            start = self.i
+            try:
+                node = self.reference() if ch in _IDENT_START else self.number()
+                if self.i < self.end and self.text[self.i] in ",)":
+                    return node
+            except _GiveUp:  # `NOT a`, `TRUE` ...: the expression reader decides
+                pass
+            self.i = start  # more follows: read it again as an expression
         return self.expr(0)
 
     # Expressions by precedence climbing over st.lark's levels: OR < XOR < AND/& < = <> <
@@ -242,12 +251,13 @@ class _Scanner:
         if m is None or (m.end() < self.end and text[m.end()] in ":\\"):
             raise _GiveUp  # reserved word, qualified name, not a name at all
         name = n.Name(m.group(), self.span(start, m.end()))
-        self.i = m.end()
-        if self.skip() == "(":  # a function call (`ABS(x)` in CPT)
+        self.i = j = m.end()
+        nxt = text[j] if j < self.end else ""
+        if nxt == "(" or (nxt in _BLANK and nxt and self.skip() == "("):  # a call (`ABS(x)` in CPT)
             return self.call(name)
-        self.i = m.end()
+        self.i = j
         node: n.Expr = name
-        first = self.at(start)
+        first = name.span[:2]
         while self.i < self.end:
             ch = text[self.i]
             if ch == ".":
