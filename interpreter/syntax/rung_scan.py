@@ -324,5 +324,5 @@ def scan_rung(text: str, line: int, col: int, plain_name: re.Pattern[str]) -> n.
     """
     try:
         return _Scanner(text, line, col, plain_name).rung()
-    except (_GiveUp, IndexError):
+    except (_GiveUp, IndexError, RecursionError):  # deep nesting too: the LALR parser has no stack limit
         return None
