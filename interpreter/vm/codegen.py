@@ -9,6 +9,7 @@ fault helpers below (docs/decisions/0003-vm-design.md).
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -119,6 +120,20 @@ HELPERS: dict[str, Any] = {
 
 _TRUE = ("1", "True")
 _MAX_DEPTH = 40  # CPython's parser refuses about 200 nested parentheses
+_LONG = 160  # shorter expressions cannot nest _MAX_DEPTH parentheses deep with operands in them
+_QUOTED = re.compile(r"b?'(?:[^'\\]|\\.)*'|b?\"(?:[^\"\\]|\\.)*\"")
+
+
+def _nesting(expr: str) -> int:
+    """Deepest parenthesis nesting of a generated expression (string literals skipped)."""
+    depth = deepest = 0
+    for ch in _QUOTED.sub("", expr):
+        if ch == "(":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif ch == ")":
+            depth -= 1
+    return deepest
 _FALSE = ("0", "False")
 
 
@@ -256,6 +271,13 @@ class Translator:
         self.block_has_code.append(False)
         for ins in self.ops:
             self.op(ins)
+            top = self.stack[-1] if self.stack else None
+            if isinstance(top, _Val) and len(top.expr) > _LONG and _nesting(top.expr) > _MAX_DEPTH:
+                # a long expression (`a + b + ... + z`, deeply nested calls): Python's parser
+                # refuses about 200 nested parentheses, so evaluate the part so far now
+                t = self.fresh()
+                self.line(f"{t} = {top.expr}")
+                self.stack[-1] = _Val(t, top.type)
         if not self.block_has_code[-1]:
             self.line("pass")
         assert not self.stack, f"stack not empty after {self.code.name}: {self.stack}"
