@@ -23,6 +23,8 @@ if TYPE_CHECKING:
     from .runtime.controller import Controller
 
 EXIT_OK, EXIT_VERIFY, EXIT_USAGE, EXIT_FAULT = 0, 1, 2, 3
+_RECURSION_LIMIT = 60_000  # AST walks take about three frames per level
+_STACK_BYTES = 512 * 1024 * 1024  # reserved address space; only the pages used are touched
 
 
 class UsageError(Exception):
@@ -72,6 +74,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     except KeyboardInterrupt:
         return 130
+    except RecursionError:  # beyond even _with_deep_stack's limit: refuse, never a traceback
+        print("logixst: error: the program nests expressions, statements or branches too deeply to analyse",
+              file=sys.stderr)
+        return EXIT_USAGE
 
 
 # ------------------------------------------------------------------ run
@@ -341,6 +347,32 @@ def _print_diags(diags: list[Diagnostic]) -> None:
         print(d.text(), file=sys.stderr)
 
 
+def _with_deep_stack(fn: Callable[[], int]) -> int:
+    """Run the command in a thread with a large stack and a high recursion limit.
+
+    The checker and compiler walk the AST recursively, and a sum of a few hundred terms or a
+    few hundred nested branches is as deep an AST; CPython's default limit (1,000 frames)
+    and the main thread's 8 MB stack are too small for that. Ctrl+C still reaches the main
+    thread, which waits here.
+    """
+    import threading
+
+    sys.setrecursionlimit(_RECURSION_LIMIT)
+    threading.stack_size(_STACK_BYTES)
+    result = [EXIT_USAGE]
+
+    def run() -> None:
+        result[0] = fn()
+
+    worker = threading.Thread(target=run, name="logixst", daemon=True)
+    worker.start()
+    try:
+        worker.join()
+    except KeyboardInterrupt:
+        return 130
+    return result[0]
+
+
 def entry() -> None:
     """Console-script entry point: `main`, then exit without tearing down the object graph.
 
@@ -350,7 +382,7 @@ def entry() -> None:
     """
     import os
 
-    code = main()
+    code = _with_deep_stack(main)
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(code)

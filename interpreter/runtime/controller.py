@@ -17,7 +17,7 @@ from ..vm.codegen import HELPERS, Translator
 from ..vm.context import DEFAULT_WATCHDOG, ExecContext, MajorFault
 from ..vm.values import string_text
 from .aoi import AoiRoutines, make_impls
-from .loader import Loaded
+from .loader import InputError, Loaded
 from .motion import MotionRuntime
 from .storage import allocate
 from .tasks import Schedule
@@ -140,7 +140,12 @@ class Controller:
     def _translate(self, code: Any, ops: list, name: str, ns: dict[str, Any] | None = None) -> Callable[..., None]:
         ns = self.ns if ns is None else ns
         src = Translator(code, ns, name, ops).translate()
-        exec(compile(src, f"<logix {code.path}:{name}>", "exec"), ns)  # noqa: S102
+        try:
+            compiled = compile(src, f"<logix {code.path}:{name}>", "exec")
+        except (SyntaxError, RecursionError):  # Python's limits: 100 nested blocks, parser depth
+            raise InputError(f"{code.path}: routine '{code.name}' nests statements too deeply to run "
+                             f"(the limit is about 90 levels)") from None
+        exec(compiled, ns)  # noqa: S102
         return ns[name]  # type: ignore[no-any-return]
 
     # ------------------------------------------------------------ running
