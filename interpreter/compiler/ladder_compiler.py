@@ -246,7 +246,7 @@ class LadderCompiler(RoutineCompiler):
             self.emit(Op.TGET, (k, BOOL))
         elif name in ("MOV", "CPT"):
             src, dest = (ops[0], ops[1]) if name == "MOV" else (ops[1], ops[0])
-            self.when_true(depth, lambda: self.move(src, dest, ins.span))
+            self.when_true(depth, lambda: self.move(src, dest, ins.span, checked=name == "CPT"))
         elif name == "MCR":
             k = self.hold(depth)
             assert self.mcr is not None
@@ -293,14 +293,21 @@ class LadderCompiler(RoutineCompiler):
         self.value(b, ot)
         self.emit(Op.CMP, (op, ot))
 
-    def move(self, src: n.Expr, dest: n.Expr, span: n.Span) -> None:
-        """dest := src converted like an ST assignment; S:N S:Z S:V from the stored value."""
+    def move(self, src: n.Expr, dest: n.Expr, span: n.Span, checked: bool = False) -> None:
+        """dest := src converted like an ST assignment; S:N S:Z S:V from the stored value.
+
+        `checked` (CPT, FAL): an overflow in any operation of the expression also sets S:V
+        (decision 0025)."""
         t = self.type_of(dest)
         self.place(dest)
         if isinstance(src, n.Literal) and isinstance(src.value, float) and t is LREAL:
             self.emit(Op.CONST, (src.value, LREAL))  # a REAL literal keeps double precision in LREAL
         else:
+            if checked:
+                self.emit(Op.OVF, True)
             self.expr(src)  # in its own (promoted) type: STOREF converts at the end (SPEC 9.19)
+            if checked:
+                self.emit(Op.OVF, False)
         self.emit(Op.STOREF, t, span)
 
     def jump(self, label: str, span: n.Span) -> None:
@@ -465,7 +472,7 @@ class LadderCompiler(RoutineCompiler):
             self.emit(Op.TSET, left)
         if name == "FAL":
             dest, expr = ins.operands[4], ins.operands[5]
-            self.move(expr, dest, ins.span)
+            self.move(expr, dest, ins.span, checked=True)
             self.emit(Op.SYS, "V")  # overflow: ER, stop on this element
             self.emit(Op.IF)
             self.set_member(ctl, "ER", 1)
