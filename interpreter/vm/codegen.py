@@ -128,7 +128,7 @@ HELPERS: dict[str, Any] = {
     "_ArrayRef": ArrayRef, "MajorFault": MajorFault,
     "_stf": store_flags, "_rvn": returned, "_rv": return_value, "_cpy": copy_into,
     "_vi": over_int, "_vr": over_real, "_vidiv": over_idiv, "_vimod": over_imod, "_vipow": over_ipow,
-    "_vfdiv": over_fdiv, "_vfmod": over_fmod,
+    "_vfdiv": over_fdiv, "_vfmod": over_fmod, "_INF": math.inf,
 }
 
 _TRUE = ("1", "True")
@@ -554,10 +554,11 @@ class Translator:
         """Arithmetic of a ladder CPT/FAL expression: results as `binary`, and a result that
         does not fit `t` (or a division by zero) sets ctx.overflow for the store's S:V."""
         single = t.bits == 32
+        tmp = self.fresh()
         if t.kind is Kind.REAL:
-            if op in "+-*":
-                e = f"({x} {op} {y})"
-                expr = f"_vr(ctx, _f32{e})" if single else f"_vr(ctx, {e})"
+            if op in "+-*":  # the common case inline; only a non-finite result calls the helper
+                e = f"_f32({x} {op} {y})" if single else f"({x} {op} {y})"
+                expr = f"({tmp} if -_INF < ({tmp} := {e}) < _INF else _vr(ctx, {tmp}))"
             elif op == "/":
                 expr = f"_vfdiv(ctx, {x}, {y}, {single})"
             elif op == "MOD":
@@ -565,7 +566,8 @@ class Translator:
             else:
                 expr = f"_vr(ctx, _fpow({x}, {y}, {single}))"
         elif op in "+-*":
-            expr = f"_vi(ctx, {x} {op} {y}, {t.bits}, {t.signed})"
+            lo, hi = (-(1 << (t.bits - 1)), 1 << (t.bits - 1)) if t.signed else (0, 1 << t.bits)
+            expr = f"({tmp} if {lo} <= ({tmp} := {x} {op} {y}) < {hi} else _vi(ctx, {tmp}, {t.bits}, {t.signed}))"
         elif op == "/":
             expr = f"_vidiv(ctx, {x}, {y}, {t.bits}, {t.signed})"
         elif op == "MOD":
