@@ -16,7 +16,7 @@ from ..instructions.registry import LOWERED
 from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
-from .program import ProgramModel, Tag, const_number
+from .program import ProgramModel, Tag, const_number, module_tag_note
 from .types import (
     BOOL,
     DINT,
@@ -741,7 +741,7 @@ class Checker(LadderChecks):
         if tag is None:
             pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
             names = [t.name for t in pool]
-            self.err("E101", f"undefined tag '{e.ident}'{self.suggest(e.ident, names)}", e.span)
+            self.err("E101", f"undefined tag '{e.ident}'{module_tag_note(self.model, e.ident) or self.suggest(e.ident, names)}", e.span)
             return None
         self.a.tag_of[id(e)] = tag
         return tag.type

@@ -88,6 +88,20 @@ class ProgramModel:
         return self.tags.get(name.upper())
 
 
+def module_tag_note(model: ProgramModel, ident: str) -> str:
+    """Why a module I/O tag name (`Local:3:I`, `Drive1:O`) is undefined: its module's data is not
+    in the export (a connection without Decorated data, or no `<Modules>` section at all)."""
+    if ":" not in ident or ident.upper().startswith("PROGRAM:"):
+        return ""
+    modules: dict[str, str] = model.extra.get("modules", {})  # type: ignore[assignment]
+    module = modules.get(ident.rsplit(":", 1)[0].upper())
+    if module is not None:
+        return f": the data of module '{module}' for this I/O tag is not in the export (no Decorated data)"
+    if "l5x" in model.extra:
+        return ": a module I/O tag, and the module's data is not in the export"
+    return ": a module I/O tag; these exist only in an L5X export holding the module's data"
+
+
 def const_number(e: object) -> int | float | None:
     """Value of a literal number, possibly negated; None for anything else."""
     if isinstance(e, n.Literal) and isinstance(e.value, int | float):

@@ -28,6 +28,7 @@ def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[
     routines = [r for p in project.programs for r in p.routines]
     model = ProgramModel(project.controller or "project", routines, types)
     model.extra["l5x"] = project
+    model.extra["modules"] = project.modules
     udts = declare_types(types, [(td, path) for td in project.types], diags)
     aoi_types = declare_types(types, [(n.TypeDecl(a.name, [], a.span, a.span), path) for a in project.aois], diags)
     define_members(types, udts, diags)

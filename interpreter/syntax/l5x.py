@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, fields, is_dataclass
 from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .l5x_data import DataReader, RawMember, _dims
+from .l5x_modules import ModuleReader
 from .st_parser import parse_st
 from .xml_reader import Positions, XElem, XmlRejected, parse_xml
 
@@ -81,6 +82,7 @@ class L5XProject:
     tasks: list[TaskDecl] = field(default_factory=list)
     axis_groups: dict[str, str] = field(default_factory=dict)  # axis tag -> motion group tag
     coarse_update_us: float | None = None
+    modules: dict[str, str] = field(default_factory=dict)  # upper I/O tag prefix (`LOCAL:1`) -> module name
     context: dict[int, str] = field(default_factory=dict)  # file line -> "program P, routine R, rung N"
 
     def annotate(self, d: Diagnostic) -> Diagnostic:
@@ -157,6 +159,11 @@ class _Reader:
         for sec in ctl.all("DataTypes"):
             for e in sec.all("DataType"):
                 self.datatype(e)
+        for sec in ctl.all("Modules"):
+            mods = ModuleReader(self.pos, self.data).read(sec)
+            p.types.extend(mods.types)
+            p.tags.extend(mods.tags)
+            p.modules.update(mods.modules)
         for sec in ctl.all("AddOnInstructionDefinitions"):
             for e in sec.children:
                 if e.tag == "AddOnInstructionDefinition":
@@ -164,7 +171,9 @@ class _Reader:
                 elif e.tag == "EncodedData":
                     self.encoded(e, "add-on instruction")
         for sec in ctl.all("Tags"):
-            p.tags, p.aliases = self.tags(sec)
+            tags, aliases = self.tags(sec)
+            p.tags.extend(tags)
+            p.aliases.extend(aliases)
         for sec in ctl.all("Programs"):
             for e in sec.children:
                 if e.tag == "Program":
@@ -412,8 +421,9 @@ class _Reader:
             text = text_e.text
             off = text_e.text_offset if text_e.text_offset >= 0 else text_e.offset
             line, col = self.pos.at(off)
+            label = f"{where}, rung {number}"
             for k in range(text.count("\n") + 1):
-                self.project.context.setdefault(line + k, f"{where}, rung {number}")
+                self.project.context.setdefault(line + k, label)
             rung, diags = parse_rung(text, self.path, number, line, col)
             self.diags.extend(diags)
             if rung is not None:

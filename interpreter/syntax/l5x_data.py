@@ -2,7 +2,8 @@
 
 Decorated data (`DataValue`, `Structure`, `Array`, `Element`, `DataValueMember`,
 `StructureMember`, `ArrayMember`) maps one to one onto Literal / StructInit / ArrayInit;
-`<Data Format="String">` becomes a STRING literal; L5K text (`[1,2,[3,4]]`) is the fallback
+`<Data Format="String">` becomes a STRING literal, `<Data Format="Alarm">` parameters a
+structure initialiser; L5K text (`[1,2,[3,4]]`) is the fallback
 for exports without decorated data. Spans point at the data's place in the .L5X file.
 """
 
@@ -86,10 +87,25 @@ class DataReader:
         string = by_format.get("String")
         if string is not None:
             return self.string_literal(string)
+        alarm = by_format.get("Alarm")
+        if alarm is not None and alarm.children:
+            return self.parameters(alarm.children[0])
         l5k = by_format.get("L5K")
         if l5k is not None and l5k.text.strip():
             return self.l5k(l5k, tag.get("DataType"), _dims(tag.get("Dimensions") or tag.get("Dimension")))
         return None
+
+    def parameters(self, e: XElem) -> n.StructInit:
+        """`<AlarmDigitalParameters Severity="500" Condition="true" .../>`: attributes named
+        after members (true/false and numbers); the rest (DT# timestamps) keep defaults."""
+        span = self.span(e)
+        members: list[tuple[str, n.Span, n.Init]] = []
+        for name, text in e.attrs.items():
+            low = text.strip().lower()
+            value: int | float | None = (1 if low == "true" else 0) if low in ("true", "false") else _l5k_number(text.strip())
+            if value is not None:
+                members.append((name, span, n.Literal(value, "REAL" if isinstance(value, float) else "DINT", text, span)))
+        return n.StructInit(members, span)
 
     # ------------------------------------------------------------ decorated
     def decorated(self, e: XElem) -> n.Init | None:

@@ -20,6 +20,7 @@ from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .comments import strip_comments
 from .literals import decode_text
+from .rung_scan import scan_rung
 from .st_lexer import SlowPath, contextual_tokens, fast_parse
 from .st_parser import AstBuilder, grammar_cache, parse_st, tspan
 
@@ -117,6 +118,12 @@ def _parser() -> Lark:
         transformer=RllBuilder(), maybe_placeholders=True, start=["rung_line", "rung_only"],
         cache=grammar_cache("rll"),
     )
+
+
+@cache
+def _plain_name() -> re.Pattern[str]:
+    """The grammar's NAME terminal (an identifier that is not a reserved word), for rung_scan."""
+    return re.compile(_parser().get_terminal("st__NAME").pattern.to_regexp())
 
 
 # ---------------------------------------------------------------- positions
@@ -246,7 +253,10 @@ def _end_pos(text: str) -> tuple[int, int]:
 
 def _parse_piece(text: str, path: str, o: _Origin, start: str) -> tuple[n.Rung | n.Comment | None, list[Diagnostic]]:
     parser = _parser()
-    try:  # fast path: tokens already at file positions, no recovery needed
+    rung = scan_rung(text, o.line, o.col, _plain_name())  # ordinary rungs: no parser at all
+    if rung is not None:
+        return rung, []
+    try:  # then the LALR tables without recovery, tokens already at file positions
         fast: n.Rung | n.Comment = fast_parse(
             parser, text, start, lambda state: contextual_tokens(parser, text, state, o.line, o.col),
         )
