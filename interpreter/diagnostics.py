@@ -62,7 +62,7 @@ _TABLE: list[tuple[str, str]] = [
     ("E125", "invalid array declaration"),
     ("E126", "instruction used in the wrong place or language"),
     ("E127", "EXIT outside a loop"),
-    ("E128", "'?' placeholder where a value is required"),
+    ("E128", "'?' placeholder or empty operand where a value is required"),
     ("E129", "empty rung"),
     ("E130", "named parameters are only for function blocks"),
     ("E131", "ladder label missing, repeated or misplaced"),

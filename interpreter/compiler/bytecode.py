@@ -56,7 +56,11 @@ instruction needs it. Rung values are truthy (0/1/True/False); stores normalise 
   EDGE k              push the place of edge bit k (BOOL) of this routine: the rung state a
                       transitional instruction's call site saw last time
   STOREF type         STORE that also sets the math status flags S:N, S:Z and S:V (the
-                      value did not fit `type`) from the stored value (ladder MOV, CPT, FAL)
+                      value did not fit `type`, or an operation between OVF True and the
+                      store overflowed) from the stored value (ladder MOV, CPT, FAL)
+  OVF on              on=True: until OVF False, BIN, NEG and FN results that do not fit
+                      their type (integer out of range, REAL not finite, division by zero)
+                      note an overflow for the next STOREF (ladder CPT and FAL expressions)
 """
 
 from __future__ import annotations
@@ -109,6 +113,7 @@ class Op(Enum):
     RCALL = "RCALL"
     EDGE = "EDGE"
     STOREF = "STOREF"
+    OVF = "OVF"
 
 
 @dataclass(frozen=True, slots=True)

@@ -44,8 +44,12 @@ def _label(e: n.Expr | None) -> str:
 
 
 class LadderCompiler(RoutineCompiler):
-    def __init__(self, model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None) -> None:
+    def __init__(self, model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None,
+                 instance_edges: dict[int, int] | None = None) -> None:
         super().__init__(model, analysis, routine, sites)
+        # An add-on instruction's routine keeps its edges in hidden members of the instance
+        # (frame slot 0): id(instruction) -> member index (semantics/aoi.py, decision 0024).
+        self.instance_edges = instance_edges or {}
         self.code.language = "rll"
         self.cat = catalog()
         self.rung_temps: list[int] = []  # rung condition per branch depth
@@ -242,7 +246,7 @@ class LadderCompiler(RoutineCompiler):
             self.emit(Op.TGET, (k, BOOL))
         elif name in ("MOV", "CPT"):
             src, dest = (ops[0], ops[1]) if name == "MOV" else (ops[1], ops[0])
-            self.when_true(depth, lambda: self.move(src, dest, ins.span))
+            self.when_true(depth, lambda: self.move(src, dest, ins.span, checked=name == "CPT"))
         elif name == "MCR":
             k = self.hold(depth)
             assert self.mcr is not None
@@ -289,14 +293,21 @@ class LadderCompiler(RoutineCompiler):
         self.value(b, ot)
         self.emit(Op.CMP, (op, ot))
 
-    def move(self, src: n.Expr, dest: n.Expr, span: n.Span) -> None:
-        """dest := src converted like an ST assignment; S:N S:Z S:V from the stored value."""
+    def move(self, src: n.Expr, dest: n.Expr, span: n.Span, checked: bool = False) -> None:
+        """dest := src converted like an ST assignment; S:N S:Z S:V from the stored value.
+
+        `checked` (CPT, FAL): an overflow in any operation of the expression also sets S:V
+        (decision 0025)."""
         t = self.type_of(dest)
         self.place(dest)
         if isinstance(src, n.Literal) and isinstance(src.value, float) and t is LREAL:
             self.emit(Op.CONST, (src.value, LREAL))  # a REAL literal keeps double precision in LREAL
         else:
+            if checked:
+                self.emit(Op.OVF, True)
             self.expr(src)  # in its own (promoted) type: STOREF converts at the end (SPEC 9.19)
+            if checked:
+                self.emit(Op.OVF, False)
         self.emit(Op.STOREF, t, span)
 
     def jump(self, label: str, span: n.Span) -> None:
@@ -317,26 +328,35 @@ class LadderCompiler(RoutineCompiler):
         self.emit(Op.TSET, j.pc)
         self.emit(Op.STEP, (0, True), span)
 
-    def transitional(self, ins: n.LadderInstr, cat: Instruction, depth: int) -> None:
-        """Call with True on the rung's rising edge, with False on every false rung, not otherwise."""
+    def edge(self, ins: n.LadderInstr) -> None:
+        """Push the place of the bit remembering the rung `ins` saw last time."""
+        member = self.instance_edges.get(id(ins))
+        if member is not None:  # per add-on instruction instance
+            self.emit(Op.TAG, 0)
+            self.emit(Op.MEMBER, member)
+            return
         e = self.edge_of.setdefault(id(ins), len(self.code.edges))
         if e == len(self.code.edges):
             self.code.edges.append(0)
+        self.emit(Op.EDGE, e)
+
+    def transitional(self, ins: n.LadderInstr, cat: Instruction, depth: int) -> None:
+        """Call with True on the rung's rising edge, with False on every false rung, not otherwise."""
         call = self.as_call(ins)
         k = self.hold(depth)
         self.emit(Op.IF)
-        self.emit(Op.EDGE, e)
+        self.edge(ins)
         self.emit(Op.LOAD, BOOL)
         self.emit(Op.NOT, BOOL)
         self.emit(Op.IF)
-        self.emit(Op.EDGE, e)
+        self.edge(ins)
         self.emit(Op.CONST, (1, BOOL))
         self.emit(Op.STORE, BOOL)
         count = self.operands(call, cat)
         self.emit(Op.CALL, (cat.key, count, True), ins.span)
         self.emit(Op.END)
         self.emit(Op.ELSE)
-        self.emit(Op.EDGE, e)
+        self.edge(ins)
         self.emit(Op.CONST, (0, BOOL))
         self.emit(Op.STORE, BOOL)
         count = self.operands(call, cat)
@@ -452,7 +472,7 @@ class LadderCompiler(RoutineCompiler):
             self.emit(Op.TSET, left)
         if name == "FAL":
             dest, expr = ins.operands[4], ins.operands[5]
-            self.move(expr, dest, ins.span)
+            self.move(expr, dest, ins.span, checked=True)
             self.emit(Op.SYS, "V")  # overflow: ER, stop on this element
             self.emit(Op.IF)
             self.set_member(ctl, "ER", 1)
@@ -495,16 +515,18 @@ class LadderCompiler(RoutineCompiler):
                         v = const_number(e)
                         if isinstance(v, int):
                             self.set_member(ctl, member, v)
-                elif id(ins) in self.edge_of:  # a rung true in the first scan is a transition
-                    self.emit(Op.EDGE, self.edge_of[id(ins)])
+                elif id(ins) in self.edge_of or id(ins) in self.instance_edges:
+                    self.edge(ins)  # a rung true in the first scan is a transition
                     self.emit(Op.CONST, (0, BOOL))
                     self.emit(Op.STORE, BOOL)
-                if cat.name not in LOWERED and lookup_prescan(cat.name, "rll") is not None:
+                if cat.name not in LOWERED and (cat.family == "aoi" or lookup_prescan(cat.name, "rll") is not None):
+                    # an add-on instruction's prescan runs its Logic routine's prescan (as in ST)
                     count = self.operands(self.as_call(ins), cat)
                     self.emit(Op.PRESCAN, (cat.key, count, False), ins.span)
         self.site_span = None
         self.ops = main_ops
 
 
-def compile_ladder(model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None) -> Code:
-    return LadderCompiler(model, analysis, routine, sites).compile()
+def compile_ladder(model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None,
+                   instance_edges: dict[int, int] | None = None) -> Code:
+    return LadderCompiler(model, analysis, routine, sites, instance_edges).compile()

@@ -127,7 +127,7 @@ class Controller:
                 if name not in ("LOGIC", "ENABLEINFALSE"):
                     continue
                 if r.language == "rll":
-                    code = compile_ladder(self.model, self.analysis, r, self.sites)
+                    code = compile_ladder(self.model, self.analysis, r, self.sites, aoi.edges)
                 else:
                     code = compile_routine(self.model, self.analysis, r, self.sites)
                 fn = self._translate(code, code.ops, f"_aoi{k}_{name.lower()}", self.ns)

@@ -7,21 +7,29 @@ the InOut arguments of the current call (structures and arrays by object, elemen
 through a reference cell). A parameter or local tag is therefore a Tag with slot 0 and an
 access path (member index); an InOut is slot j. A call is an ordinary catalog-style
 instruction whose implementation builds the frame and runs the compiled routine.
+
+State the ladder compiler keeps between scans (the rung each transitional instruction saw
+last) lives in hidden BOOL members of the instance, one per call site, so every instance
+has its own, as every Logix instance has its own backing tag (docs/decisions/0024).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from stdlib import Instruction, Operand
+from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
 from ..syntax.l5x import AoiDecl
+from .ladder_check import rung_instructions
 from .program import Tag, const_number, resolve_typeref
-from .types import ArrayType, DataType, Elementary, StructType, TypeTable
+from .types import BOOL, ArrayType, DataType, Elementary, StructType, TypeTable
 
 SCAN_ROUTINES = ("LOGIC", "PRESCAN", "ENABLEINFALSE", "POSTSCAN")
+COMPILED_ROUTINES = ("LOGIC", "ENABLEINFALSE")  # the scan modes the controller runs
+# Consecutive underscores are not allowed in a Logix tag name: no local tag can clash.
+EDGE_MEMBER = "__Edge{}"
 
 
 @dataclass(slots=True)
@@ -42,10 +50,39 @@ class Aoi:
     tags: dict[str, Tag] = field(default_factory=dict)  # upper name -> frame-bound tag
     required: list[AoiParam] = field(default_factory=list)  # call operands after the instance
     routines: dict[str, n.Routine] = field(default_factory=dict)  # LOGIC, PRESCAN, ...
+    edges: dict[int, int] = field(default_factory=dict)  # id(ladder instruction) -> hidden member
 
 
-def define_aoi(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic]) -> Aoi:
-    """Fill the (already declared) instance type `st` and build the call signature."""
+def define_aoi(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic],
+               aoi_names: frozenset[str] = frozenset()) -> Aoi:
+    """Fill the (already declared) instance type `st` and build the call signature.
+
+    `aoi_names` (upper case) are the project's add-on instructions: a call of one of them is
+    never a catalog instruction, even when the names are the same.
+    """
+    aoi = _define(types, decl, st, path, diags)
+    _edge_members(types, aoi, aoi_names)
+    return aoi
+
+
+def _edge_members(types: TypeTable, aoi: Aoi, aoi_names: frozenset[str]) -> None:
+    """One hidden BOOL member per transitional ladder instruction of the compiled routines."""
+    cat = catalog()
+    for name in COMPILED_ROUTINES:
+        r = aoi.routines.get(name)
+        if r is None or r.language != "rll":
+            continue
+        for rung in r.rungs:
+            for ins in rung_instructions(rung.elements):
+                entry = None if ins.name.upper() in aoi_names else cat.instruction(ins.name, "rll")
+                if entry is not None and entry.transitional:
+                    aoi.edges[id(ins)] = len(aoi.type.members)
+                    key = EDGE_MEMBER.format(len(aoi.edges) - 1)
+                    types.add_member(aoi.type, key, BOOL)
+                    aoi.type.hidden.add(key.upper())
+
+
+def _define(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic]) -> Aoi:
     aoi = Aoi(decl.name, st, path)
     frame = 1
     operands = [Operand("Instance", (st.name,), "tag", "inout", doc=f"{decl.name} instance tag")]

@@ -445,6 +445,9 @@ class Checker(LadderChecks):
         self.a.type_of[id(inst)] = st
         fb = FBCall(ins, inst, [], [])
         for a in c.args:
+            if isinstance(a.value, n.Placeholder):
+                self.err("E128", f"function block call '{c.name}': an empty parameter is not allowed; give parameters by name", a.span)
+                continue
             if a.name is None:
                 self.err("E130", "function block parameters are given by name (Name := value)", a.span)
                 continue
@@ -525,7 +528,8 @@ class Checker(LadderChecks):
     def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
         if isinstance(e, n.Placeholder):
             if not op.placeholder:
-                self.err("E128", f"{ins.name} operand {op.name} needs a value here, not a placeholder", e.span)
+                what = "cannot be left empty" if self.language == "st" else "needs a value here, not a placeholder"
+                self.err("E128", f"{ins.name} operand {op.name} {what}", e.span)
             return
         if op.enum is not None and self.enum_operand(ins, op, e):
             return

@@ -36,7 +36,7 @@ def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[
     for a in project.aois:
         st = declared.get(a.name.upper())
         if st is not None:
-            model.aois[a.name.upper()] = define_aoi(types, a, st, path, diags)
+            model.aois[a.name.upper()] = define_aoi(types, a, st, path, diags, frozenset(declared))
     _prune_inits(project.tags, types)
     declare_tags(model, project.tags, path, diags)
     for p in project.programs:

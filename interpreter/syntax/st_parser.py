@@ -142,7 +142,26 @@ class AstBuilder(Transformer):
         return n.Assign(c[0], c[2], str(c[1]) == "[:=]", _join(c[0], c[2]))
 
     def call_stmt(self, c: list) -> n.CallStmt:
-        return n.CallStmt(c[0], c[0].span)
+        name: Token = c[0]
+        items = [c[1], *c[2], c[3]]  # "(" slot ("," slot)* ")": slots sit between separators
+        slots = items[1:-1:2]
+        args: list[n.Arg] = []
+        if not (len(slots) == 1 and slots[0] is None):  # `f()`: no arguments at all
+            for i, slot in enumerate(slots):
+                if slot is None:  # an empty operand: its span is the separators around it
+                    sp = tspan(items[2 * i]).to(tspan(items[2 * i + 2]))
+                    slot = n.Arg(n.Placeholder(sp), None, sp)
+                args.append(slot)
+        end = args[-1].span if args else tspan(name)
+        call = n.Call(str(name), args, tspan(name).to(end), tspan(name))
+        return n.CallStmt(call, call.span)
+
+    def call_args_first(self, c: list) -> list:
+        return [c[0]]
+
+    def call_args_more(self, c: list) -> list:
+        c[0].extend((c[1], c[2]))  # keep the commas
+        return c[0]  # type: ignore[no-any-return]
 
     def call(self, c: list) -> n.Call:
         name = c[0]

@@ -17,7 +17,19 @@ from ..compiler.bytecode import Code, Ins, Op
 from ..instructions.registry import lookup, lookup_prescan
 from ..semantics.types import BOOL, LINT, LREAL, DataType, Elementary, Kind, StructType
 from .context import ExecContext, MajorFault
-from .ladder_helpers import copy_into, return_value, returned, store_flags
+from .ladder_helpers import (
+    copy_into,
+    over_fdiv,
+    over_fmod,
+    over_idiv,
+    over_imod,
+    over_int,
+    over_ipow,
+    over_real,
+    return_value,
+    returned,
+    store_flags,
+)
 from .refs import ArrayRef, BitRef, Ref
 from .values import f32, real_to_int, set_string, string_text, wrap
 
@@ -116,6 +128,8 @@ HELPERS: dict[str, Any] = {
     "_f32": f32, "_r2i": _r2i, "_wrap": wrap, "_Ref": Ref, "_BitRef": BitRef,
     "_ArrayRef": ArrayRef, "MajorFault": MajorFault,
     "_stf": store_flags, "_rvn": returned, "_rv": return_value, "_cpy": copy_into,
+    "_vi": over_int, "_vr": over_real, "_vidiv": over_idiv, "_vimod": over_imod, "_vipow": over_ipow,
+    "_vfdiv": over_fdiv, "_vfmod": over_fmod, "_INF": math.inf,
 }
 
 _TRUE = ("1", "True")
@@ -211,6 +225,7 @@ class Translator:
         self.block_has_code: list[bool] = []
         self.tmp = 0
         self.edges_name: str | None = None
+        self.ovf = False  # inside OVF True .. OVF False: arithmetic notes overflows
 
     def const_name(self, value: object) -> str:
         name = f"_k{len(self.ns)}"
@@ -371,6 +386,8 @@ class Translator:
             assert isinstance(t, Elementary)
             if t.kind is Kind.REAL:
                 st.append(_Val(f"(-{v.expr})", t))
+            elif self.ovf:
+                st.append(_Val(f"_vi(ctx, -{v.expr}, {t.bits}, {t.signed})", t))
             else:
                 st.append(_Val(_wrap_expr(f"-{v.expr}", t), t))
         elif op is Op.NOT:
@@ -395,7 +412,12 @@ class Translator:
             v = self.pop_val()
             fn = self.impl(key)
             call = f"{fn}(ctx, True, {v.expr})"
-            st.append(_Val(conv_expr(call, _result_src(t), t), t))
+            if self.ovf and isinstance(t, Elementary) and t.kind is Kind.INT:
+                st.append(_Val(f"_vi(ctx, {call}, {t.bits}, {t.signed})", t))  # ABS of the minimum
+            elif self.ovf and isinstance(t, Elementary) and t.kind is Kind.REAL:
+                st.append(_Val(f"_vr(ctx, {conv_expr(call, _result_src(t), t)})", t))  # LN(0) ...
+            else:
+                st.append(_Val(conv_expr(call, _result_src(t), t), t))
         elif op is Op.CALL or op is Op.PRESCAN:
             key, count = arg[0], arg[1]  # type: ignore[index]
             rung = bool(arg[2]) if len(arg) > 2 else True  # type: ignore[arg-type]
@@ -465,6 +487,8 @@ class Translator:
             self.line(f"ctx.site = {site}")
             self.line(f"{res} = {fn}(ctx, {flag}{''.join(', ' + a for a in args)})")
             st.append(_Val(f"({rung} if {res} is None else {res})", BOOL))
+        elif op is Op.OVF:
+            self.ovf = bool(arg)
         elif op is Op.EDGE:
             if self.edges_name is None:
                 self.edges_name = self.const_name(self.code.edges)
@@ -515,6 +539,9 @@ class Translator:
                 sym = {"AND": "&", "OR": "|", "XOR": "^"}[op]
                 st.append(_Val(f"({x} {sym} {y})", t))
             return
+        if self.ovf:
+            self.checked_binary(op, t, x, y)
+            return
         single = t.bits == 32
         if t.kind is Kind.REAL:
             if op in "+-*":
@@ -543,6 +570,33 @@ class Translator:
             st.append(_Val(f"_imod(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
         elif op == "**":
             st.append(_Val(f"_ipow(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
+
+
+    def checked_binary(self, op: str, t: Elementary, x: str, y: str) -> None:
+        """Arithmetic of a ladder CPT/FAL expression: results as `binary`, and a result that
+        does not fit `t` (or a division by zero) sets ctx.overflow for the store's S:V."""
+        single = t.bits == 32
+        tmp = self.fresh()
+        if t.kind is Kind.REAL:
+            if op in "+-*":  # the common case inline; only a non-finite result calls the helper
+                e = f"_f32({x} {op} {y})" if single else f"({x} {op} {y})"
+                expr = f"({tmp} if -_INF < ({tmp} := {e}) < _INF else _vr(ctx, {tmp}))"
+            elif op == "/":
+                expr = f"_vfdiv(ctx, {x}, {y}, {single})"
+            elif op == "MOD":
+                expr = f"_vfmod(ctx, {x}, {y}, {single})"
+            else:
+                expr = f"_vr(ctx, _fpow({x}, {y}, {single}))"
+        elif op in "+-*":
+            lo, hi = (-(1 << (t.bits - 1)), 1 << (t.bits - 1)) if t.signed else (0, 1 << t.bits)
+            expr = f"({tmp} if {lo} <= ({tmp} := {x} {op} {y}) < {hi} else _vi(ctx, {tmp}, {t.bits}, {t.signed}))"
+        elif op == "/":
+            expr = f"_vidiv(ctx, {x}, {y}, {t.bits}, {t.signed})"
+        elif op == "MOD":
+            expr = f"_vimod(ctx, {x}, {y})"
+        else:
+            expr = f"_vipow(ctx, {x}, {y}, {t.bits}, {t.signed})"
+        self.stack.append(_Val(expr, t))
 
 
 def _rung_logic(a: _Val, b: _Val, word: str) -> _Val:

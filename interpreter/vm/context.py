@@ -44,6 +44,9 @@ class ExecContext:
     status: dict[str, int] = field(default_factory=dict)  # S:N S:Z S:V S:C ...
     rv: list[Any] | None = None  # values the last RET handed back to its JSR (None: no RET)
     system: dict[str, Any] = field(default_factory=dict)  # attributes set by SSV (clock offset ...)
+    # An operation inside the ladder CPT/FAL expression being evaluated overflowed; the
+    # flag-setting store (STOREF) turns it into S:V and clears it (decision 0025).
+    overflow: bool = False
 
     def minor(self, type_: int, code: int, message: str, site: int | None = None) -> None:
         where = self.site if site is None else site

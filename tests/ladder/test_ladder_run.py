@@ -188,6 +188,57 @@ def test_mov_converts_like_an_assignment_and_sets_flags(st: Runner) -> None:
     assert minors == [(4, 4, 5), (4, 4, 7)]
 
 
+def test_cpt_overflow_inside_the_expression_sets_v(st: Runner) -> None:
+    """S:V also reports an operation of the expression that overflowed, not only the store
+    (5580 math status flags: the result of a math operation overflowed); decision 0025."""
+    src = """VAR
+      big : DINT := 1000000000; d1, d2, d3 : DINT; huge : REAL := 1.0e20; r1 : REAL;
+      n1, z1, v1, n2, z2, v2, v3, v4 : BOOL;
+    END_VAR
+    CPT(d1, big * 4 / 4) [XIC(S:N) OTE(n1), XIC(S:Z) OTE(z1), XIC(S:V) OTE(v1)];
+    CPT(r1, 1.0 / (huge * huge)) [XIC(S:N) OTE(n2), XIC(S:Z) OTE(z2), XIC(S:V) OTE(v2)];
+    CPT(d2, 2 + 3 * 4) XIC(S:V) OTE(v3);
+    CPT(d3, big * 2) XIC(S:V) OTE(v4);
+    """
+    r = st.run(src, "d1", "r1", "d2", "d3", "n1", "z1", "v1", "n2", "z2", "v2", "v3", "v4", name="main.rll")
+    assert r.code == 0, r.err
+    # DINT: 1e9 * 4 = 4 000 000 000 wraps to 4 000 000 000 - 2^32 = -294 967 296, / 4 =
+    # -73 741 824, which fits the DINT Dest: only the intermediate product overflowed.
+    # REAL: 1e20 * 1e20 = 1e40 > 3.4028235e38 (largest REAL) -> +inf; 1.0 / inf = 0.0 stored,
+    # finite: again only the intermediate overflowed (Z from the stored 0.0).
+    # 2 + 3 * 4 = 14: nothing overflows, V is cleared again.
+    # 1e9 * 2 = 2 000 000 000 fits a DINT (max 2 147 483 647): no overflow.
+    assert r.tags == {"d1": -73741824, "r1": 0.0, "d2": 14, "d3": 2000000000,
+                      "n1": True, "z1": False, "v1": True, "n2": False, "z2": True, "v2": True,
+                      "v3": False, "v4": False}
+    # one minor fault 4/4 per overflowing CPT, at the instruction (lines 5 and 6)
+    minors = [(f["type"], f["code"], f["line"], f["count"]) for f in r.json["faults"]]
+    assert minors == [(4, 4, 5, 1), (4, 4, 6, 1)]
+
+
+def test_cpt_integer_divide_by_zero_inside_the_expression_sets_v(st: Runner) -> None:
+    src = """VAR a : DINT := 7; zero : DINT; d : DINT; v : BOOL; END_VAR
+    CPT(d, a / zero + 1) XIC(S:V) OTE(v);
+    """
+    r = st.run(src, "d", "v", name="main.rll")
+    assert r.code == 0, r.err
+    # integer divide by zero leaves Source A (7), + 1 = 8; it counts as an overflow (as for
+    # the DIV instruction) and is recorded once, at the CPT, as minor fault 4/4
+    assert r.tags == {"d": 8, "v": True}
+    assert [(f["type"], f["code"], f["line"]) for f in r.json["faults"]] == [(4, 4, 2)]
+
+
+def test_fal_overflow_inside_the_expression_stops_with_er(st: Runner) -> None:
+    src = """VAR src : DINT[3] := [1, 1000000000, 2]; dst : DINT[3]; ctl : CONTROL; END_VAR
+    FAL(ctl, 3, 0, ALL, dst[ctl.POS], src[ctl.POS] * 4 / 4);
+    """
+    r = st.run(src, "dst", "ctl.ER", "ctl.POS", "ctl.DN", name="main.rll")
+    assert r.code == 0, r.err
+    # element 0: 1 * 4 / 4 = 1; element 1: the product 4e9 overflows (stored -73 741 824 as
+    # in the CPT case) -> ER, the instruction stops on element 1; element 2 is not reached
+    assert r.tags == {"dst": [1, -73741824, 0], "ctl.ER": True, "ctl.POS": 1, "ctl.DN": False}
+
+
 # ------------------------------------------------------------------ prescan
 def test_prescan_clears_ote_and_timer_bits_keeps_latches(st: Runner) -> None:
     src = """VAR coil, lat, never : BOOL; t : TIMER; END_VAR

@@ -58,6 +58,9 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "E125": ("VAR\n  v : ARRAY[1..5] OF DINT;\nEND_VAR\n", "VAR\n  v : ARRAY[0..4] OF DINT;\nEND_VAR\n"),
     "E126": ("ABS(x);\n", "x := ABS(x);\n"),
     "E127": ("EXIT;\n", "WHILE b DO\n  EXIT;\nEND_WHILE;\n"),
+    # an empty operand is allowed only where the catalog allows it (GSV/SSV InstanceName)
+    "E128": ("VAR d : DINT[7]; END_VAR\nGSV(WallClockTime, LocalDateTime, , d[0]);\n",
+             "VAR d : DINT[7]; END_VAR\nGSV(WallClockTime, , LocalDateTime, d[0]);\n"),
     "E130": ("IF b THEN MSO(Axis := ax, MotionControl := mc); END_IF;\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
     "W201": ("FOR i := 0 TO 4 DO\n  i := 5;\nEND_FOR;\n", "FOR i := 0 TO 4 DO\n  x := i;\nEND_FOR;\n"),
     "W203": ("IF b THEN MSO(ax, mc); MSF(ax, mc); END_IF;\n", "IF b THEN MSO(ax, mc); MSF(ax, mc2); END_IF;\n"),
@@ -105,7 +108,7 @@ def test_clean_twin(st, code: str) -> None:
 
 def test_every_st_code_has_a_fixture() -> None:
     # codes that only ladder or L5X input can produce (or need a feature beyond ST files)
-    not_st = {"S006", "S007", "E128", "E129", "E131", "W202", "U301", "U302", "U304", "U305"}
+    not_st = {"S006", "S007", "E129", "E131", "W202", "U301", "U302", "U304", "U305"}
     assert set(REGISTRY) - not_st - set(FIXTURES) == set()
 
 
@@ -223,3 +226,58 @@ def test_missing_end_if_names_the_if(st) -> None:
     (d,) = [d for d in diags if d["code"] == "S002"]
     assert "END_IF" in d["message"]
     assert "11" in d["message"]  # the IF is on line 11
+
+
+# ------------------------------------------------------------------ empty operands in ST calls
+def test_st_gsv_with_an_empty_instance_name_runs(st) -> None:
+    src = "VAR dt : DINT[7]; END_VAR\nGSV(WallClockTime,,LocalDateTime,dt[0]);\n"
+    r = st.run(src, "dt", scans=1)
+    assert r.code == 0, r.err
+    # the virtual wall clock starts at 2024-01-01 00:00:00 (UTC offset 0, no DST) and the
+    # first scan runs at t = 0: year, month, day, hour, minute, second, microsecond
+    assert r.tags["dt"] == [2024, 1, 1, 0, 0, 0, 0]
+
+
+def test_st_empty_operand_elsewhere_is_e128_at_the_separators(st) -> None:
+    body = ("VAR d : DINT[7]; t : FBD_TIMER; END_VAR\n"
+            "GSV(WallClockTime, LocalDateTime, , d[0]);\n"
+            "COP(d[0],, 1);\n"
+            "SSV(WallClockTime,,LocalDateTime,);\n")
+    exit_code, diags = _codes(st, body)
+    assert exit_code == 1
+    got = [(d["code"], d["line"], d["column"], d["endLine"], d["endColumn"], d["message"]) for d in diags]
+    # line 2: the third slot lies between the commas at columns 33 and 35 (end exclusive 36);
+    # line 3: between the commas at columns 9 and 10; line 4: between the comma at 33 and ')' at 34
+    assert got == [
+        ("E128", 2, 33, 2, 36, "GSV operand AttributeName cannot be left empty"),
+        ("E128", 3, 9, 3, 11, "COP operand Dest cannot be left empty"),
+        ("E128", 4, 33, 4, 35, "SSV operand Source cannot be left empty"),
+    ]
+
+
+def test_st_empty_parameter_of_a_function_block_call_is_e128(st) -> None:
+    body = "VAR ci : MC_CamIn; b : BOOL; END_VAR\nci(Execute := b, );\n"
+    _, diags = _codes(st, body)
+    # `ci(Execute := b, )`: `ci(` is columns 1-3, `Execute` 4-10, `:=` 12-13, `b` 15, the comma
+    # 16, a blank 17 and ')' 18: the empty slot spans 16..18, end exclusive 19
+    e128 = [(d["line"], d["column"], d["endColumn"], d["message"]) for d in diags if d["code"] == "E128"]
+    assert e128 == [(2, 16, 19, "function block call 'ci': an empty parameter is not allowed; give parameters by name")]
+
+
+def test_st_empty_argument_in_an_expression_call_is_a_syntax_error(st) -> None:
+    exit_code, diags = _codes(st, "x := ABS(,x);\n")
+    assert exit_code == 1 and [d["code"] for d in diags] == ["S001"]
+
+
+def test_st_call_without_arguments_has_none(st) -> None:
+    from interpreter.syntax import nodes as n
+    from interpreter.syntax.st_parser import parse_st
+
+    routine, diags = parse_st("NOP();\nGSV(WallClockTime,,LocalDateTime,d);\n", "p.st")
+    assert diags == []
+    nop, gsv = routine.body
+    assert isinstance(nop, n.CallStmt) and nop.call.args == []
+    assert isinstance(gsv, n.CallStmt)
+    slot = gsv.call.args[1].value
+    # `GSV(WallClockTime,,` : the two commas are columns 18 and 19 of line 2
+    assert isinstance(slot, n.Placeholder) and slot.span == n.Span(2, 18, 2, 20)

@@ -42,6 +42,9 @@ SNIPPETS = {
     "enum_text": "VAR m : MOTION_INSTRUCTION; END_VAR MAJ(ax, m, 0, 1.0, %ofTime, 1, Unitspersec2);",
     # After '.', reserved words are member names (UDT members AND, MOD, Array in real exports).
     "program_parameter": "\\Other.Flag := \\Other.In.OR AND NOT \\P2.x[1];",
+    # Empty operands in an instruction call statement (the checker decides where they are allowed).
+    "empty_operands": "VAR dt : DINT[7]; END_VAR GSV(WallClockTime,,LocalDateTime,dt[0]);\n"
+                      "SSV( WallClockTime , , LocalDateTime , dt[0] ); NOP(); COP(dt[0],,1); f(,); g(a := 1,);",
     "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
