@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
-from typing import Any
 
 import pytest
+from test_project import run  # the same run-and-read-tags helper (tests/l5x is on sys.path)
 
 from interpreter.cli import main
 from interpreter.semantics.project import build_project
@@ -21,17 +20,6 @@ def read(path: Path = MODULES):  # type: ignore[no-untyped-def]
     project, diags = read_l5x(path.read_bytes(), str(path))
     assert project is not None and diags == []
     return project
-
-
-def run(capsys: pytest.CaptureFixture[str], path: Path, scans: int, *watch: str, extra: tuple[str, ...] = ()) -> dict[str, Any]:
-    argv = ["run", str(path), "--scans", str(scans), "--json", *extra]
-    for w in watch:
-        argv += ["--watch", w]
-    capsys.readouterr()
-    code = main(argv)
-    out = capsys.readouterr()
-    assert code == 0, (code, out.err, out.out)
-    return json.loads(out.out)["tags"]  # type: ignore[no-any-return]
 
 
 def test_module_tags_are_named_as_studio_names_them() -> None:
