@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import difflib
 from dataclasses import dataclass, field
+from functools import cache
+from typing import Any
 
 from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
-from ..instructions.registry import LOWERED
+from ..instructions.registry import LOWERED, lookup
 from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
@@ -20,6 +22,7 @@ from .program import ProgramModel, Tag, const_number
 from .types import (
     BOOL,
     DINT,
+    ELEMENTARY,
     LREAL,
     REAL,
     ArrayType,
@@ -33,6 +36,8 @@ from .types import (
 SYSTEM_FLAGS = {"S:FS": "FS", "S:N": "N", "S:Z": "Z", "S:V": "V", "S:C": "C", "S:MINOR": "MINOR"}
 ST_SYSTEM_FLAGS = {"S:FS"}
 LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
+BITS = (n.Bit, n.IndirectBit)
+COMPUTED = (n.Binary, n.Call)
 # Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
 REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
 
@@ -83,6 +88,21 @@ def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
     return False
 
 
+@cache
+def _elementary_accepted(accepted: tuple[str, ...]) -> frozenset[str]:
+    """Names of the elementary types an operand with these catalog types accepts."""
+    return frozenset(name for name, t in ELEMENTARY.items() if type_matches(t, accepted))
+
+
+def accepts(t: DataType, accepted: tuple[str, ...]) -> bool:
+    """type_matches, answered from a per-type-list table for elementary types (the common case:
+    the answer depends only on the type's name, and the only elementary types are those of
+    types.ELEMENTARY)."""
+    if isinstance(t, Elementary):
+        return t.name in _elementary_accepted(accepted)
+    return type_matches(t, accepted)
+
+
 def is_cam_profile_array(t: DataType) -> bool:
     return isinstance(t, ArrayType) and isinstance(t.elem, StructType) and t.elem.name == "CAM_PROFILE"
 
@@ -116,8 +136,30 @@ def describe(t: DataType | None) -> str:
     return "unknown" if t is None else str(t)
 
 
+# cache marker: "not looked up yet" (None means "no such tag"); Any, so a cache .get() with it
+# as default still types as a Tag | None for mypy
+_UNRESOLVED: Any = object()
+
+
+@dataclass(slots=True)
+class _Plan:
+    """What the checker needs of one instruction name in one language, worked out once.
+
+    A project checks the same few dozen instructions tens of thousands of times; the catalog
+    lookup, the operand count and whether an implementation exists do not change in between.
+    """
+
+    ins: Instruction | None  # None: unknown here (every call is reported, with a suggestion)
+    required: int = 0  # operands that are not optional
+
+
 class Checker(LadderChecks):
-    """One pass over a ProgramModel's routines."""
+    """One pass over a ProgramModel's routines.
+
+    The model does not change while it is checked, so name resolutions are cached: tags per
+    scope (see `scope`), instruction entries per language, implementation presence per
+    instruction. Every diagnostic is still raised at each place it applies.
+    """
 
     def __init__(self, model: ProgramModel) -> None:
         self.model = model
@@ -129,14 +171,49 @@ class Checker(LadderChecks):
         self.guard_depth = 0
         self.for_vars: list[str] = []
         self.motion_uses: dict[str, int] = {}
-        self.scope: str | None = None  # the L5X program whose routine is being checked
-        self.aoi: Aoi | None = None  # the add-on instruction whose routine is being checked
+        self._scope: str | None = None
+        self._aoi: Aoi | None = None
+        # tag lookups by identifier as written, one cache per (program, AOI) scope: the same
+        # name may be a different tag (or none) in another program or inside an AOI
+        self._visible_by_scope: dict[tuple[str | None, str | None], dict[str, Tag | None]] = {}
+        self._visible: dict[str, Tag | None] = self._visible_cache()
+        self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
+        self._impl_missing: dict[tuple[str, str], bool] = {}  # (catalog name, language) -> U304
+
+    @property
+    def scope(self) -> str | None:
+        """The L5X program whose routine (or tag data) is being checked."""
+        return self._scope
+
+    @scope.setter
+    def scope(self, program: str | None) -> None:
+        self._scope = program
+        self._visible = self._visible_cache()
+
+    @property
+    def aoi(self) -> Aoi | None:
+        """The add-on instruction whose routine is being checked."""
+        return self._aoi
+
+    @aoi.setter
+    def aoi(self, aoi: Aoi | None) -> None:
+        self._aoi = aoi
+        self._visible = self._visible_cache()
+
+    def _visible_cache(self) -> dict[str, Tag | None]:
+        key = (self._scope, self._aoi.name.upper() if self._aoi is not None else None)
+        return self._visible_by_scope.setdefault(key, {})
 
     def lookup(self, name: str) -> Tag | None:
         """A tag visible here: AOI parameters and locals inside an AOI, else program then controller."""
-        if self.aoi is not None:
-            return self.aoi.tags.get(name.upper())
-        return self.model.tag(name, self.scope)
+        tag = self._visible.get(name, _UNRESOLVED)
+        if tag is _UNRESOLVED:
+            if self._aoi is not None:
+                tag = self._aoi.tags.get(name.upper())
+            else:
+                tag = self.model.tag(name, self._scope)
+            self._visible[name] = tag
+        return tag
 
     def find_instruction(self, name: str) -> Instruction | None:
         """A project's add-on instruction, else the catalog instruction of this language."""
@@ -410,7 +487,8 @@ class Checker(LadderChecks):
         args: list[n.Expr], named: n.Arg | None,
     ) -> None:
         """An instruction call, ST statement or ladder element alike: catalog entry and operands."""
-        ins = self.find_instruction(name)
+        plan = self.plan(name)
+        ins = plan.ins
         if ins is None:
             other = self.cat.instruction_any(name)
             if other is not None:
@@ -428,7 +506,7 @@ class Checker(LadderChecks):
         if named is not None:
             self.err("E130", "named parameters are only for function block instances", named.span)
         else:
-            self.operands(ins, args, span)
+            self.operands(ins, args, span, plan.required)
             if ins.family == "aoi":
                 self.aoi_arguments(name, args)
         self.require_implementation(ins, name_span)
@@ -436,6 +514,16 @@ class Checker(LadderChecks):
             self.a.diags.append(
                 diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, span)
             )
+
+    def plan(self, name: str) -> _Plan:
+        """The cached catalog (or AOI) entry of an instruction name in the current language."""
+        key = (name, self.language)
+        plan = self._plans.get(key)
+        if plan is None:
+            ins = self.find_instruction(name)
+            required = sum(1 for o in ins.operands if not o.optional) if ins is not None else 0
+            plan = self._plans[key] = _Plan(ins, required)
+        return plan
 
     def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
         st = tag.type
@@ -478,33 +566,38 @@ class Checker(LadderChecks):
                 self.err("E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span)  # type: ignore[attr-defined]
 
     def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
-        from ..instructions.registry import lookup
-
         language = language or self.language
         if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
             return
-        if lookup(ins.name, language) is None:
+        key = (ins.name, language)  # the registry answers by name and language only
+        missing = self._impl_missing.get(key)
+        if missing is None:
+            missing = self._impl_missing[key] = lookup(ins.name, language) is None
+        if missing:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
-    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span) -> None:
+    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, required: int) -> None:
+        """`required`: how many of `ins.operands` are not optional (see `plan`)."""
         ops = ins.operands
-        required = sum(1 for o in ops if not o.optional)
         if len(args) < required or (len(args) > len(ops) and not ins.variadic):
             expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
             self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {len(args)} given", span)
             for e in args:
                 self.expr(e)
             return
-        inputs_end = len(ops)
-        if ins.name == "JSR" and len(args) > 1:  # JSR(Routine, n, n inputs..., returns...)
-            count = const_number(args[1])
-            inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
-        for i, e in enumerate(args):
-            if ins.name == "JSR" and i >= 2:
-                op = ops[2] if i < inputs_end else ops[3]
-            else:
-                op = ops[i] if i < len(ops) else ops[-1]
-            self.operand(ins, op, e, i)
+        if ins.name == "JSR":  # JSR(Routine, n, n inputs..., returns...)
+            inputs_end = len(ops)
+            if len(args) > 1:
+                count = const_number(args[1])
+                inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
+            for i, e in enumerate(args):
+                op = ops[i] if i < 2 else ops[2] if i < inputs_end else ops[3]
+                self.operand(ins, op, e, i)
+        else:
+            for i, (op, e) in enumerate(zip(ops, args, strict=False)):
+                self.operand(ins, op, e, i)
+            for i in range(len(ops), len(args)):  # the last operand repeats (variadic)
+                self.operand(ins, ops[-1], args[i], i)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
         if ins.name in ("GSV", "SSV") and len(args) >= 3:
@@ -533,14 +626,15 @@ class Checker(LadderChecks):
             self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
             self.expr(e)
             return
-        if op.format == "routine":
+        fmt = op.format
+        if fmt == "routine":
             if not isinstance(e, n.Name):
                 self.err("E124", "JSR needs a routine name", e.span)
             elif self.model.routine(e.ident, self.scope) is None:
                 names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
                 self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
             return
-        if op.format == "label":
+        if fmt == "label":
             return
         if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
@@ -548,34 +642,34 @@ class Checker(LadderChecks):
             return
         if op.nullable and const_number(e) == 0:
             return  # a literal 0 means the optional array is not used
-        if op.format == "array":
+        if fmt == "array":
             self.array_operand(ins, op, e)
             return
         t = self.expr(e)
         is_tag = isinstance(e, LVALUES) and id(e) not in self.a.enum_of
-        if op.format == "memory" and isinstance(e, n.Bit | n.IndirectBit):
+        if fmt == "memory" and isinstance(e, BITS):
             self.err("E106", f"{ins.name} operand {op.name} must be a tag or element, not a bit", e.span)
             return
-        if op.format in ("tag", "memory") and not is_tag:
+        if (fmt == "tag" or fmt == "memory") and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} must be a tag", e.span)
             return
-        if op.format == "immediate" and is_tag:
+        if fmt == "immediate" and is_tag:
             self.err("E107", f"{ins.name} operand {op.name} must be an immediate value", e.span)
             return
-        if op.dir in ("out", "inout") and not is_tag and op.format != "immediate":
+        if not is_tag and op.dir != "in" and fmt != "immediate":  # dir: in, out or inout
             self.err("E106", f"{ins.name} operand {op.name} is written: it must be a tag", e.span)
             return
         if t is None:
             return
-        if int_literal_for_real(e, t, op.types):
-            return  # SPEC 9.15: integer literals are accepted for REAL operands
-        if not type_matches(t, op.types):
+        if not accepts(t, op.types):
+            if int_literal_for_real(e, t, op.types):
+                return  # SPEC 9.15: integer literals are accepted for REAL operands
             if any(x == "AXIS" for x in op.types) or is_axis(t):
                 self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)
             else:
                 self.err("E105", f"{ins.name} operand {op.name} does not accept {t} (accepts {', '.join(op.types)})", e.span)
             return
-        if t is not None and isinstance(t, StructType) and t.name == "MOTION_INSTRUCTION":
+        if isinstance(t, StructType) and t.name == "MOTION_INSTRUCTION":
             key = _text(e).upper()
             if key in self.motion_uses:
                 self.a.diags.append(
@@ -635,31 +729,24 @@ class Checker(LadderChecks):
 
     # ------------------------------------------------------------ expressions
     def expr(self, e: n.Expr) -> DataType | None:
-        t = self._expr(e)
+        kind = type(e)  # the commonest operands first, without the isinstance chain of _expr
+        if kind is n.Name:
+            t = self.name(e)  # type: ignore[arg-type]
+        elif kind is n.Member:
+            t = self.member(e)  # type: ignore[arg-type]
+        else:
+            t = self._expr(e)
         if t is not None:
             self.a.type_of[id(e)] = t
         return t
 
     def _expr(self, e: n.Expr) -> DataType | None:  # noqa: C901
         if isinstance(e, n.Literal):
-            if e.type == "STRING":
-                return self.model.types.get("STRING")
-            return self.model.types.get(e.type)
+            return self.model.types.get(e.type)  # STRING included
         if isinstance(e, n.Name):
             return self.name(e)
         if isinstance(e, n.Member):
-            bt = self.expr(e.base)
-            if bt is None:
-                return None
-            if not isinstance(bt, StructType):
-                self.err("E102", f"{_text(e.base)} is a {bt}: it has no member '{e.name}'", e.name_span)
-                return None
-            m = bt.member(e.name)
-            if m is None or e.name.upper() in bt.hidden:
-                names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
-                self.err("E102", f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}", e.name_span)
-                return None
-            return m[1]
+            return self.member(e)
         if isinstance(e, n.Index):
             bt = self.expr(e.base)
             for i in e.indices:
@@ -725,15 +812,34 @@ class Checker(LadderChecks):
             return None
         return None
 
+    def member(self, e: n.Member) -> DataType | None:
+        bt = self.expr(e.base)
+        if bt is None:
+            return None
+        if not isinstance(bt, StructType):
+            self.err("E102", f"{_text(e.base)} is a {bt}: it has no member '{e.name}'", e.name_span)
+            return None
+        key = e.name.upper()
+        i = bt.index.get(key)  # StructType.member, without upper-casing the name twice
+        if i is None or key in bt.hidden:
+            names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
+            self.err("E102", f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}", e.name_span)
+            return None
+        return bt.members[i][1]
+
     def name(self, e: n.Name) -> DataType | None:
-        key = e.ident.upper()
-        if key in SYSTEM_FLAGS:
-            if self.language == "st" and key not in ST_SYSTEM_FLAGS:
-                self.err("E123", f"{e.ident} is available in ladder only", e.span)
-                return None
-            self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
-            return BOOL
-        tag = self.lookup(e.ident)
+        ident = e.ident
+        if ":" in ident:  # every system flag has one (S:N): plain tag names skip the upper()
+            key = ident.upper()
+            if key in SYSTEM_FLAGS:
+                if self.language == "st" and key not in ST_SYSTEM_FLAGS:
+                    self.err("E123", f"{e.ident} is available in ladder only", e.span)
+                    return None
+                self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
+                return BOOL
+        tag = self._visible.get(ident, _UNRESOLVED)  # self.lookup, inlined: a cache hit mostly
+        if tag is _UNRESOLVED:
+            tag = self.lookup(ident)
         if tag is None:
             pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
             names = [t.name for t in pool]
@@ -818,7 +924,7 @@ def _is_expression(e: n.Expr) -> bool:
     """An operand that computes (a + b, ABS(x), NOT b), as opposed to a tag or a literal (-5)."""
     if isinstance(e, n.Unary):
         return not (e.op == "-" and isinstance(e.operand, n.Literal))
-    return isinstance(e, n.Binary | n.Call)
+    return isinstance(e, COMPUTED)
 
 
 def _enum_text(e: n.Expr) -> str | None:
