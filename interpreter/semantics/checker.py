@@ -90,17 +90,12 @@ def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
 
 @cache
 def _elementary_accepted(accepted: tuple[str, ...]) -> frozenset[str]:
-    """Names of the elementary types an operand with these catalog types accepts."""
+    """Names of the elementary types type_matches accepts for these catalog types.
+
+    For an elementary type its answer depends on the name alone (the only elementary types
+    are those of types.ELEMENTARY), so a set lookup can stand in for it on the hot path.
+    """
     return frozenset(name for name, t in ELEMENTARY.items() if type_matches(t, accepted))
-
-
-def accepts(t: DataType, accepted: tuple[str, ...]) -> bool:
-    """type_matches, answered from a per-type-list table for elementary types (the common case:
-    the answer depends only on the type's name, and the only elementary types are those of
-    types.ELEMENTARY)."""
-    if isinstance(t, Elementary):
-        return t.name in _elementary_accepted(accepted)
-    return type_matches(t, accepted)
 
 
 def is_cam_profile_array(t: DataType) -> bool:
@@ -141,16 +136,50 @@ def describe(t: DataType | None) -> str:
 _UNRESOLVED: Any = object()
 
 
+@dataclass(frozen=True, slots=True)
+class _OperandCheck:
+    """Which of Checker.operand's checks apply to one catalog operand in one language.
+
+    Worked out once per instruction (see _Plan): most operands are plain values or tags, and
+    for them the checks for enumerations, routines, labels, object names and arrays are
+    skipped with one test instead of six.
+    """
+
+    op: Operand
+    special: bool  # enumeration, routine, label, nullable, array or GSV/SSV InstanceName
+    no_expression: bool  # ladder: takes a tag or a literal, not an expression
+    memory: bool  # format memory: a tag or element, not a bit
+    tag: bool  # format tag or memory: must be a tag
+    immediate: bool  # format immediate: must not be a tag
+    written: bool  # dir out or inout, and not immediate: must be a tag
+    elementary: frozenset[str]  # names of the elementary types it accepts (see accepts)
+
+    @staticmethod
+    def of(ins: Instruction, op: Operand, language: str) -> _OperandCheck:
+        fmt = op.format
+        special = (
+            op.enum is not None
+            or fmt in ("routine", "label", "array")
+            or op.nullable
+            or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
+        )
+        return _OperandCheck(
+            op, special, language == "rll" and not op.expression, fmt == "memory", fmt in ("tag", "memory"),
+            fmt == "immediate", op.dir in ("out", "inout") and fmt != "immediate", _elementary_accepted(op.types),
+        )
+
+
 @dataclass(slots=True)
 class _Plan:
     """What the checker needs of one instruction name in one language, worked out once.
 
     A project checks the same few dozen instructions tens of thousands of times; the catalog
-    lookup, the operand count and whether an implementation exists do not change in between.
+    lookup and what is checked of each operand do not change in between.
     """
 
     ins: Instruction | None  # None: unknown here (every call is reported, with a suggestion)
     required: int = 0  # operands that are not optional
+    checks: tuple[_OperandCheck, ...] = ()  # one per operand of ins, in order
 
 
 class Checker(LadderChecks):
@@ -506,7 +535,7 @@ class Checker(LadderChecks):
         if named is not None:
             self.err("E130", "named parameters are only for function block instances", named.span)
         else:
-            self.operands(ins, args, span, plan.required)
+            self.operands(ins, args, span, plan)
             if ins.family == "aoi":
                 self.aoi_arguments(name, args)
         self.require_implementation(ins, name_span)
@@ -521,8 +550,12 @@ class Checker(LadderChecks):
         plan = self._plans.get(key)
         if plan is None:
             ins = self.find_instruction(name)
-            required = sum(1 for o in ins.operands if not o.optional) if ins is not None else 0
-            plan = self._plans[key] = _Plan(ins, required)
+            if ins is None:
+                plan = _Plan(None)
+            else:
+                required = sum(1 for o in ins.operands if not o.optional)
+                plan = _Plan(ins, required, tuple(_OperandCheck.of(ins, o, self.language) for o in ins.operands))
+            self._plans[key] = plan
         return plan
 
     def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
@@ -576,9 +609,8 @@ class Checker(LadderChecks):
         if missing:
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
-    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, required: int) -> None:
-        """`required`: how many of `ins.operands` are not optional (see `plan`)."""
-        ops = ins.operands
+    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
+        ops, checks, required = ins.operands, plan.checks, plan.required
         if len(args) < required or (len(args) > len(ops) and not ins.variadic):
             expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
             self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {len(args)} given", span)
@@ -591,13 +623,12 @@ class Checker(LadderChecks):
                 count = const_number(args[1])
                 inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
             for i, e in enumerate(args):
-                op = ops[i] if i < 2 else ops[2] if i < inputs_end else ops[3]
-                self.operand(ins, op, e, i)
+                self.operand(ins, checks[i if i < 2 else 2 if i < inputs_end else 3], e)
         else:
-            for i, (op, e) in enumerate(zip(ops, args, strict=False)):
-                self.operand(ins, op, e, i)
-            for i in range(len(ops), len(args)):  # the last operand repeats (variadic)
-                self.operand(ins, ops[-1], args[i], i)
+            for check, e in zip(checks, args, strict=False):
+                self.operand(ins, check, e)
+            for e in args[len(ops):]:  # the last operand repeats (variadic)
+                self.operand(ins, checks[-1], e)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
         if ins.name in ("GSV", "SSV") and len(args) >= 3:
@@ -615,53 +646,35 @@ class Checker(LadderChecks):
             what = "set" if ins.name == "SSV" else "read"
             self.err("U303", f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller", args[2].span)
 
-    def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
+    def operand(self, ins: Instruction, check: _OperandCheck, e: n.Expr) -> None:
+        op = check.op
         if isinstance(e, n.Placeholder):
             if not op.placeholder:
                 self.err("E128", f"{ins.name} operand {op.name} needs a value here, not a placeholder", e.span)
             return
-        if op.enum is not None and self.enum_operand(ins, op, e):
-            return
-        if self.language == "rll" and not op.expression and _is_expression(e):
-            self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
-            self.expr(e)
-            return
-        fmt = op.format
-        if fmt == "routine":
-            if not isinstance(e, n.Name):
-                self.err("E124", "JSR needs a routine name", e.span)
-            elif self.model.routine(e.ident, self.scope) is None:
-                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
-                self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
-            return
-        if fmt == "label":
-            return
-        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
-            self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
-            self.a.type_of[id(e)] = DINT
-            return
-        if op.nullable and const_number(e) == 0:
-            return  # a literal 0 means the optional array is not used
-        if fmt == "array":
-            self.array_operand(ins, op, e)
+        if check.special:
+            if self.special_operand(ins, check, e):
+                return
+        elif check.no_expression and _is_expression(e):
+            self.expression_operand(ins, op, e)
             return
         t = self.expr(e)
         is_tag = isinstance(e, LVALUES) and id(e) not in self.a.enum_of
-        if fmt == "memory" and isinstance(e, BITS):
+        if check.memory and isinstance(e, BITS):
             self.err("E106", f"{ins.name} operand {op.name} must be a tag or element, not a bit", e.span)
             return
-        if (fmt == "tag" or fmt == "memory") and not is_tag:
+        if check.tag and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} must be a tag", e.span)
             return
-        if fmt == "immediate" and is_tag:
+        if check.immediate and is_tag:
             self.err("E107", f"{ins.name} operand {op.name} must be an immediate value", e.span)
             return
-        if not is_tag and op.dir != "in" and fmt != "immediate":  # dir: in, out or inout
+        if check.written and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} is written: it must be a tag", e.span)
             return
         if t is None:
             return
-        if not accepts(t, op.types):
+        if not (t.name in check.elementary if isinstance(t, Elementary) else type_matches(t, op.types)):
             if int_literal_for_real(e, t, op.types):
                 return  # SPEC 9.15: integer literals are accepted for REAL operands
             if any(x == "AXIS" for x in op.types) or is_axis(t):
@@ -677,6 +690,40 @@ class Checker(LadderChecks):
                 )
             else:
                 self.motion_uses[key] = e.span.line
+
+    def expression_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
+        self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
+        self.expr(e)
+
+    def special_operand(self, ins: Instruction, check: _OperandCheck, e: n.Expr) -> bool:
+        """The checks of an operand that is not a plain value or tag (_OperandCheck.special), in
+        Checker.operand's order; True when the operand is done with."""
+        op = check.op
+        if op.enum is not None and self.enum_operand(ins, op, e):
+            return True
+        if check.no_expression and _is_expression(e):
+            self.expression_operand(ins, op, e)
+            return True
+        fmt = op.format
+        if fmt == "routine":
+            if not isinstance(e, n.Name):
+                self.err("E124", "JSR needs a routine name", e.span)
+            elif self.model.routine(e.ident, self.scope) is None:
+                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
+                self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
+            return True
+        if fmt == "label":
+            return True
+        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
+            self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
+            self.a.type_of[id(e)] = DINT
+            return True
+        if op.nullable and const_number(e) == 0:
+            return True  # a literal 0 means the optional array is not used
+        if fmt == "array":
+            self.array_operand(ins, op, e)
+            return True
+        return False
 
     def array_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
         base = e.base if isinstance(e, n.Index) else e
