@@ -14,7 +14,7 @@ from typing import Any
 from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
-from ..instructions.registry import LOWERED, lookup
+from ..instructions.registry import LOWERED, has_implementation
 from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
@@ -152,7 +152,7 @@ class _OperandCheck:
     tag: bool  # format tag or memory: must be a tag
     immediate: bool  # format immediate: must not be a tag
     written: bool  # dir out or inout, and not immediate: must be a tag
-    elementary: frozenset[str]  # names of the elementary types it accepts (see accepts)
+    elementary: frozenset[str]  # names of the elementary types it accepts (_elementary_accepted)
 
     @staticmethod
     def of(ins: Instruction, op: Operand, language: str) -> _OperandCheck:
@@ -186,8 +186,8 @@ class Checker(LadderChecks):
     """One pass over a ProgramModel's routines.
 
     The model does not change while it is checked, so name resolutions are cached: tags per
-    scope (see `scope`), instruction entries per language, implementation presence per
-    instruction. Every diagnostic is still raised at each place it applies.
+    scope (see `scope`), instruction entries and their operand checks per language. Every
+    diagnostic is still raised at each place it applies.
     """
 
     def __init__(self, model: ProgramModel) -> None:
@@ -207,7 +207,6 @@ class Checker(LadderChecks):
         self._visible_by_scope: dict[tuple[str | None, str | None], dict[str, Tag | None]] = {}
         self._visible: dict[str, Tag | None] = self._visible_cache()
         self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
-        self._impl_missing: dict[tuple[str, str], bool] = {}  # (catalog name, language) -> U304
 
     @property
     def scope(self) -> str | None:
@@ -602,11 +601,7 @@ class Checker(LadderChecks):
         language = language or self.language
         if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
             return
-        key = (ins.name, language)  # the registry answers by name and language only
-        missing = self._impl_missing.get(key)
-        if missing is None:
-            missing = self._impl_missing[key] = lookup(ins.name, language) is None
-        if missing:
+        if not has_implementation(ins.name, language):
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
     def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
