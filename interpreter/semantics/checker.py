@@ -7,6 +7,7 @@ that the compiler lowers, plus diagnostics. Never executes anything.
 from __future__ import annotations
 
 import difflib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -18,7 +19,7 @@ from ..instructions.registry import LOWERED, has_implementation
 from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
-from .program import ProgramModel, Tag, const_number
+from .program import ProgramModel, Tag, const_number, scoped_programs
 from .types import (
     BOOL,
     DINT,
@@ -38,6 +39,7 @@ ST_SYSTEM_FLAGS = {"S:FS"}
 LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
 BITS = (n.Bit, n.IndirectBit)
 COMPUTED = (n.Binary, n.Call)
+OPERATIONS = (n.Unary, n.Binary, n.Call)  # what _is_expression can be true for
 # Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
 REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
 
@@ -96,6 +98,13 @@ def _elementary_accepted(accepted: tuple[str, ...]) -> frozenset[str]:
     are those of types.ELEMENTARY), so a set lookup can stand in for it on the hot path.
     """
     return frozenset(name for name, t in ELEMENTARY.items() if type_matches(t, accepted))
+
+
+def unimplemented(ins: Instruction, language: str) -> bool:
+    """U304: a catalog instruction that has no implementation in this language yet."""
+    if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
+        return False
+    return not has_implementation(ins.name, language)
 
 
 def is_cam_profile_array(t: DataType) -> bool:
@@ -180,6 +189,7 @@ class _Plan:
     ins: Instruction | None  # None: unknown here (every call is reported, with a suggestion)
     required: int = 0  # operands that are not optional
     checks: tuple[_OperandCheck, ...] = ()  # one per operand of ins, in order
+    unimplemented: bool = False  # U304: cannot run in this language (see unimplemented)
 
 
 class Checker(LadderChecks):
@@ -203,10 +213,13 @@ class Checker(LadderChecks):
         self._scope: str | None = None
         self._aoi: Aoi | None = None
         # tag lookups by identifier as written, one cache per (program, AOI) scope: the same
-        # name may be a different tag (or none) in another program or inside an AOI
+        # name may be a different tag (or none) in another program or inside an AOI. Programs
+        # without tags of their own see just the controller scope and share its cache.
         self._visible_by_scope: dict[tuple[str | None, str | None], dict[str, Tag | None]] = {}
+        self._scoped_programs = scoped_programs(model.tags)
         self._visible: dict[str, Tag | None] = self._visible_cache()
         self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
+        self._literal_types: dict[str, DataType | None] = {}  # Literal.type -> its data type
 
     @property
     def scope(self) -> str | None:
@@ -229,7 +242,13 @@ class Checker(LadderChecks):
         self._visible = self._visible_cache()
 
     def _visible_cache(self) -> dict[str, Tag | None]:
-        key = (self._scope, self._aoi.name.upper() if self._aoi is not None else None)
+        key: tuple[str | None, str | None]
+        if self._aoi is not None:  # its parameters and locals only, whatever the program
+            key = (None, self._aoi.name.upper())
+        elif self._scope is not None and self._scope.upper() in self._scoped_programs:
+            key = (self._scope.upper(), None)
+        else:  # file scope, the controller scope or a program without tags of its own
+            key = (None, None)
         return self._visible_by_scope.setdefault(key, {})
 
     def lookup(self, name: str) -> Tag | None:
@@ -537,7 +556,8 @@ class Checker(LadderChecks):
             self.operands(ins, args, span, plan)
             if ins.family == "aoi":
                 self.aoi_arguments(name, args)
-        self.require_implementation(ins, name_span)
+        if plan.unimplemented:  # require_implementation, answered once per plan
+            self.require_implementation(ins, name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
                 diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, span)
@@ -553,7 +573,8 @@ class Checker(LadderChecks):
                 plan = _Plan(None)
             else:
                 required = sum(1 for o in ins.operands if not o.optional)
-                plan = _Plan(ins, required, tuple(_OperandCheck.of(ins, o, self.language) for o in ins.operands))
+                checks = tuple(_OperandCheck.of(ins, o, self.language) for o in ins.operands)
+                plan = _Plan(ins, required, checks, unimplemented(ins, self.language))
             self._plans[key] = plan
         return plan
 
@@ -598,10 +619,7 @@ class Checker(LadderChecks):
                 self.err("E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span)  # type: ignore[attr-defined]
 
     def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
-        language = language or self.language
-        if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
-            return
-        if not has_implementation(ins.name, language):
+        if unimplemented(ins, language or self.language):
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
     def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
@@ -622,8 +640,9 @@ class Checker(LadderChecks):
         else:
             for check, e in zip(checks, args, strict=False):
                 self.operand(ins, check, e)
-            for e in args[len(ops):]:  # the last operand repeats (variadic)
-                self.operand(ins, checks[-1], e)
+            if len(args) > len(ops):
+                for e in args[len(ops):]:  # the last operand repeats (variadic)
+                    self.operand(ins, checks[-1], e)
         if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
         if ins.name in ("GSV", "SSV") and len(args) >= 3:
@@ -650,7 +669,7 @@ class Checker(LadderChecks):
         if check.special:
             if self.special_operand(ins, check, e):
                 return
-        elif check.no_expression and _is_expression(e):
+        elif check.no_expression and isinstance(e, OPERATIONS) and _is_expression(e):  # tags first
             self.expression_operand(ins, op, e)
             return
         t = self.expr(e)
@@ -771,88 +790,89 @@ class Checker(LadderChecks):
 
     # ------------------------------------------------------------ expressions
     def expr(self, e: n.Expr) -> DataType | None:
-        kind = type(e)  # the commonest operands first, without the isinstance chain of _expr
-        if kind is n.Name:
-            t = self.name(e)  # type: ignore[arg-type]
-        elif kind is n.Member:
-            t = self.member(e)  # type: ignore[arg-type]
-        else:
-            t = self._expr(e)
+        check = _EXPR_CHECKS.get(type(e))  # one dict lookup instead of an isinstance chain
+        t = check(self, e) if check is not None else self._expr(e)
         if t is not None:
             self.a.type_of[id(e)] = t
         return t
 
-    def _expr(self, e: n.Expr) -> DataType | None:  # noqa: C901
-        if isinstance(e, n.Literal):
-            return self.model.types.get(e.type)  # STRING included
-        if isinstance(e, n.Name):
-            return self.name(e)
-        if isinstance(e, n.Member):
-            return self.member(e)
-        if isinstance(e, n.Index):
-            bt = self.expr(e.base)
-            for i in e.indices:
-                it = self.expr(i)
-                if it is not None and not (isinstance(it, Elementary) and (it.is_integer or it.is_bool)):
-                    self.err("E121", f"a subscript must be an integer, not {it}", i.span)
-            if bt is None:
-                return None
-            if not isinstance(bt, ArrayType):
-                self.err("E110", f"{_text(e.base)} is not an array", e.span)
-                return None
-            if len(e.indices) != len(bt.dims):
-                self.err("E110", f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given", e.span)
-                return None
-            for i, size in zip(e.indices, bt.dims, strict=True):
-                v = const_number(i)
-                if isinstance(v, int) and not 0 <= v < size:
-                    self.err("E122", f"subscript {v} is outside 0..{size - 1}", i.span)
-            return bt.elem
-        if isinstance(e, n.Bit):
-            bt = self.expr(e.base)
-            if bt is None:
-                return None
-            if not (isinstance(bt, Elementary) and bt.is_integer):
-                self.err("E121", f"bit access needs an integer, not {bt}", e.span)
-                return None
-            if not 0 <= e.bit < bt.bits:
-                self.err("E122", f"bit {e.bit} is outside 0..{bt.bits - 1} of a {bt}", e.span)
-                return None
-            return BOOL
-        if isinstance(e, n.IndirectBit):
-            bt = self.expr(e.base)
-            it = self.expr(e.index)
-            if it is not None and not (isinstance(it, Elementary) and it.is_integer):
-                self.err("E121", f"a bit number must be an integer, not {it}", e.index.span)
-            if bt is None:
-                return None
-            if not (isinstance(bt, Elementary) and bt.is_integer):
-                self.err("E121", f"bit access needs an integer, not {bt}", e.span)
-                return None
-            return BOOL
-        if isinstance(e, n.Unary):
-            t = self.expr(e.operand)
-            if t is None:
-                return None
-            if not isinstance(t, Elementary):
-                self.err("E116" if isinstance(t, StructType) and t.is_string else "E121", f"{e.op} cannot be applied to {t}", e.span)
-                return None
-            if e.op == "NOT":
-                if t.is_real:
-                    self.err("E121", "NOT needs BOOL or an integer, not a REAL", e.span)
-                    return None
-                return t
-            return DINT if t.is_bool else t
-        if isinstance(e, n.Binary):
-            return self.binary(e)
-        if isinstance(e, n.Call):
-            return self.function(e)
-        if isinstance(e, n.EnumText):
-            self.err("E108", f"'{e.text}' is only valid as an enumerated operand", e.span)
-            return None
-        if isinstance(e, n.Placeholder):
-            return None
+    def _expr(self, e: n.Expr) -> DataType | None:
+        """The check for a node that is not exactly one of the node classes (a subclass)."""
+        for cls, check in _EXPR_CHECKS.items():
+            if isinstance(e, cls):
+                return check(self, e)
         return None
+
+    def index(self, e: n.Index) -> DataType | None:
+        bt = self.expr(e.base)
+        for i in e.indices:
+            it = self.expr(i)
+            if it is not None and not (isinstance(it, Elementary) and (it.is_integer or it.is_bool)):
+                self.err("E121", f"a subscript must be an integer, not {it}", i.span)
+        if bt is None:
+            return None
+        if not isinstance(bt, ArrayType):
+            self.err("E110", f"{_text(e.base)} is not an array", e.span)
+            return None
+        if len(e.indices) != len(bt.dims):
+            self.err("E110", f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given", e.span)
+            return None
+        for i, size in zip(e.indices, bt.dims, strict=True):
+            v = const_number(i)
+            if isinstance(v, int) and not 0 <= v < size:
+                self.err("E122", f"subscript {v} is outside 0..{size - 1}", i.span)
+        return bt.elem
+
+    def bit(self, e: n.Bit) -> DataType | None:
+        bt = self.expr(e.base)
+        if bt is None:
+            return None
+        if not (isinstance(bt, Elementary) and bt.is_integer):
+            self.err("E121", f"bit access needs an integer, not {bt}", e.span)
+            return None
+        if not 0 <= e.bit < bt.bits:
+            self.err("E122", f"bit {e.bit} is outside 0..{bt.bits - 1} of a {bt}", e.span)
+            return None
+        return BOOL
+
+    def indirect_bit(self, e: n.IndirectBit) -> DataType | None:
+        bt = self.expr(e.base)
+        it = self.expr(e.index)
+        if it is not None and not (isinstance(it, Elementary) and it.is_integer):
+            self.err("E121", f"a bit number must be an integer, not {it}", e.index.span)
+        if bt is None:
+            return None
+        if not (isinstance(bt, Elementary) and bt.is_integer):
+            self.err("E121", f"bit access needs an integer, not {bt}", e.span)
+            return None
+        return BOOL
+
+    def unary(self, e: n.Unary) -> DataType | None:
+        t = self.expr(e.operand)
+        if t is None:
+            return None
+        if not isinstance(t, Elementary):
+            self.err("E116" if isinstance(t, StructType) and t.is_string else "E121", f"{e.op} cannot be applied to {t}", e.span)
+            return None
+        if e.op == "NOT":
+            if t.is_real:
+                self.err("E121", "NOT needs BOOL or an integer, not a REAL", e.span)
+                return None
+            return t
+        return DINT if t.is_bool else t
+
+    def enum_text(self, e: n.EnumText) -> DataType | None:
+        self.err("E108", f"'{e.text}' is only valid as an enumerated operand", e.span)
+        return None
+
+    def placeholder(self, e: n.Placeholder) -> DataType | None:
+        return None
+
+    def literal(self, e: n.Literal) -> DataType | None:
+        t = self._literal_types.get(e.type, _UNRESOLVED)  # a handful of names: BOOL DINT REAL...
+        if t is _UNRESOLVED:
+            t = self._literal_types[e.type] = self.model.types.get(e.type)
+        return t
 
     def member(self, e: n.Member) -> DataType | None:
         bt = self.expr(e.base)
@@ -960,6 +980,23 @@ class Checker(LadderChecks):
         if ins.name in REAL_FUNCTIONS:
             return LREAL if t is LREAL else REAL
         return t
+
+
+# Checker.expr's check for each expression node class (in the order an isinstance chain
+# would try them, for _expr's subclass fallback)
+_EXPR_CHECKS: dict[type, Callable[[Checker, Any], DataType | None]] = {
+    n.Literal: Checker.literal,
+    n.Name: Checker.name,
+    n.Member: Checker.member,
+    n.Index: Checker.index,
+    n.Bit: Checker.bit,
+    n.IndirectBit: Checker.indirect_bit,
+    n.Unary: Checker.unary,
+    n.Binary: Checker.binary,
+    n.Call: Checker.function,
+    n.EnumText: Checker.enum_text,
+    n.Placeholder: Checker.placeholder,
+}
 
 
 def _is_expression(e: n.Expr) -> bool:
