@@ -624,15 +624,16 @@ class Checker(LadderChecks):
 
     def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
         ops, checks, required = ins.operands, plan.checks, plan.required
-        if len(args) < required or (len(args) > len(ops) and not ins.variadic):
-            expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
-            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {len(args)} given", span)
+        given, known = len(args), len(ops)
+        if given < required or (given > known and not ins.variadic):
+            expect = f"{required}" if required == known else f"{required} to {known}"
+            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {given} given", span)
             for e in args:
                 self.expr(e)
             return
         if ins.name == "JSR":  # JSR(Routine, n, n inputs..., returns...)
-            inputs_end = len(ops)
-            if len(args) > 1:
+            inputs_end = known
+            if given > 1:
                 count = const_number(args[1])
                 inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
             for i, e in enumerate(args):
@@ -640,12 +641,12 @@ class Checker(LadderChecks):
         else:
             for check, e in zip(checks, args, strict=False):
                 self.operand(ins, check, e)
-            if len(args) > len(ops):
-                for e in args[len(ops):]:  # the last operand repeats (variadic)
+            if given > known:
+                for e in args[known:]:  # the last operand repeats (variadic)
                     self.operand(ins, checks[-1], e)
-        if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
+        if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
-        if ins.name in ("GSV", "SSV") and len(args) >= 3:
+        if ins.name in ("GSV", "SSV") and given >= 3:
             self.system_attribute(ins, args)
 
     def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
