@@ -88,3 +88,34 @@ def test_enum_text_matching_ignores_spaces_hyphens_case() -> None:
     profile = next(e for e in cat.enums.values() if e.lookup("S-Curve") is not None)
     # 'S-Curve', 'scurve' and 'S Curve' are one enumeration word (SPEC 2.2, 3.1)
     assert profile.lookup("scurve") is profile.lookup("S Curve") is profile.lookup("S-CURVE")
+
+
+def test_implementation_index_is_what_the_modules_register() -> None:
+    """`check` answers U304 from implemented.py (registry.has_implementation) without importing
+    the implementation modules; after adding an implementation, run registry.write_index()."""
+    from interpreter.instructions import registry
+    from interpreter.instructions.implemented import IMPLEMENTED
+
+    registry.load_all()
+    assert IMPLEMENTED == frozenset(registry.IMPLEMENTATIONS), "implemented.py is stale: run registry.write_index()"
+    for ins in catalog().instructions:
+        for lang in sorted(ins.languages):
+            assert registry.has_implementation(ins.name, lang) == (lookup(ins.name, lang) is not None), (ins.key, lang)
+
+
+def test_check_imports_no_implementation_module(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """`check` only verifies: the implementation modules (and numpy behind motion) are for `run`."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    # a timer and a motion instruction (GSV/SSV would read ladder_system's attribute table: U303)
+    src = tmp_path / "p.rll"
+    src.write_text("VAR t : TIMER; ax : AXIS_VIRTUAL; mc : MOTION_INSTRUCTION; END_VAR\nTON(t,100,0);\nXIC(t.DN)MSO(ax,mc);\n")
+    probe = (
+        "import sys\nfrom interpreter.cli import main\ncode = main(['check', sys.argv[1]])\n"
+        "print(code, sorted(m for m in sys.modules if m.startswith('interpreter.instructions.') or m in ('numpy', 'interpreter.motion')))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", probe, str(src)], capture_output=True, text=True, cwd=root, check=False)
+    assert done.stdout.splitlines()[-1] == "0 ['interpreter.instructions.implemented', 'interpreter.instructions.registry']", done.stdout + done.stderr

@@ -7,19 +7,23 @@ that the compiler lowers, plus diagnostics. Never executes anything.
 from __future__ import annotations
 
 import difflib
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cache
+from typing import Any
 
 from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
-from ..instructions.registry import LOWERED
+from ..instructions.registry import LOWERED, has_implementation
 from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
-from .program import ProgramModel, Tag, const_number, module_tag_note
+from .program import ProgramModel, Tag, const_number, module_tag_note, scoped_programs
 from .types import (
     BOOL,
     DINT,
+    ELEMENTARY,
     LREAL,
     REAL,
     ArrayType,
@@ -33,6 +37,9 @@ from .types import (
 SYSTEM_FLAGS = {"S:FS": "FS", "S:N": "N", "S:Z": "Z", "S:V": "V", "S:C": "C", "S:MINOR": "MINOR"}
 ST_SYSTEM_FLAGS = {"S:FS"}
 LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
+BITS = (n.Bit, n.IndirectBit)
+COMPUTED = (n.Binary, n.Call)
+OPERATIONS = (n.Unary, n.Binary, n.Call)  # what _is_expression can be true for
 # Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
 REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
 
@@ -83,6 +90,23 @@ def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
     return False
 
 
+@cache
+def _elementary_accepted(accepted: tuple[str, ...]) -> frozenset[str]:
+    """Names of the elementary types type_matches accepts for these catalog types.
+
+    For an elementary type its answer depends on the name alone (the only elementary types
+    are those of types.ELEMENTARY), so a set lookup can stand in for it on the hot path.
+    """
+    return frozenset(name for name, t in ELEMENTARY.items() if type_matches(t, accepted))
+
+
+def unimplemented(ins: Instruction, language: str) -> bool:
+    """U304: a catalog instruction that has no implementation in this language yet."""
+    if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
+        return False
+    return not has_implementation(ins.name, language)
+
+
 def is_cam_profile_array(t: DataType) -> bool:
     return isinstance(t, ArrayType) and isinstance(t.elem, StructType) and t.elem.name == "CAM_PROFILE"
 
@@ -116,8 +140,65 @@ def describe(t: DataType | None) -> str:
     return "unknown" if t is None else str(t)
 
 
+# cache marker: "not looked up yet" (None means "no such tag"); Any, so a cache .get() with it
+# as default still types as a Tag | None for mypy
+_UNRESOLVED: Any = object()
+
+
+@dataclass(frozen=True, slots=True)
+class _OperandCheck:
+    """Which of Checker.operand's checks apply to one catalog operand in one language.
+
+    Worked out once per instruction (see _Plan): most operands are plain values or tags, and
+    for them the checks for enumerations, routines, labels, object names and arrays are
+    skipped with one test instead of six.
+    """
+
+    op: Operand
+    special: bool  # enumeration, routine, label, nullable, array or GSV/SSV InstanceName
+    no_expression: bool  # ladder: takes a tag or a literal, not an expression
+    memory: bool  # format memory: a tag or element, not a bit
+    tag: bool  # format tag or memory: must be a tag
+    immediate: bool  # format immediate: must not be a tag
+    written: bool  # dir out or inout, and not immediate: must be a tag
+    elementary: frozenset[str]  # names of the elementary types it accepts (_elementary_accepted)
+
+    @staticmethod
+    def of(ins: Instruction, op: Operand, language: str) -> _OperandCheck:
+        fmt = op.format
+        special = (
+            op.enum is not None
+            or fmt in ("routine", "label", "array")
+            or op.nullable
+            or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
+        )
+        return _OperandCheck(
+            op, special, language == "rll" and not op.expression, fmt == "memory", fmt in ("tag", "memory"),
+            fmt == "immediate", op.dir in ("out", "inout") and fmt != "immediate", _elementary_accepted(op.types),
+        )
+
+
+@dataclass(slots=True)
+class _Plan:
+    """What the checker needs of one instruction name in one language, worked out once.
+
+    A project checks the same few dozen instructions tens of thousands of times; the catalog
+    lookup and what is checked of each operand do not change in between.
+    """
+
+    ins: Instruction | None  # None: unknown here (every call is reported, with a suggestion)
+    required: int = 0  # operands that are not optional
+    checks: tuple[_OperandCheck, ...] = ()  # one per operand of ins, in order
+    unimplemented: bool = False  # U304: cannot run in this language (see unimplemented)
+
+
 class Checker(LadderChecks):
-    """One pass over a ProgramModel's routines."""
+    """One pass over a ProgramModel's routines.
+
+    The model does not change while it is checked, so name resolutions are cached: tags per
+    scope (see `scope`), instruction entries and their operand checks per language. Every
+    diagnostic is still raised at each place it applies.
+    """
 
     def __init__(self, model: ProgramModel) -> None:
         self.model = model
@@ -129,14 +210,57 @@ class Checker(LadderChecks):
         self.guard_depth = 0
         self.for_vars: list[str] = []
         self.motion_uses: dict[str, int] = {}
-        self.scope: str | None = None  # the L5X program whose routine is being checked
-        self.aoi: Aoi | None = None  # the add-on instruction whose routine is being checked
+        self._scope: str | None = None
+        self._aoi: Aoi | None = None
+        # tag lookups by identifier as written, one cache per (program, AOI) scope: the same
+        # name may be a different tag (or none) in another program or inside an AOI. Programs
+        # without tags of their own see just the controller scope and share its cache.
+        self._visible_by_scope: dict[tuple[str | None, str | None], dict[str, Tag | None]] = {}
+        self._scoped_programs = scoped_programs(model.tags)
+        self._visible: dict[str, Tag | None] = self._visible_cache()
+        self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
+        self._literal_types: dict[str, DataType | None] = {}  # Literal.type -> its data type
+
+    @property
+    def scope(self) -> str | None:
+        """The L5X program whose routine (or tag data) is being checked."""
+        return self._scope
+
+    @scope.setter
+    def scope(self, program: str | None) -> None:
+        self._scope = program
+        self._visible = self._visible_cache()
+
+    @property
+    def aoi(self) -> Aoi | None:
+        """The add-on instruction whose routine is being checked."""
+        return self._aoi
+
+    @aoi.setter
+    def aoi(self, aoi: Aoi | None) -> None:
+        self._aoi = aoi
+        self._visible = self._visible_cache()
+
+    def _visible_cache(self) -> dict[str, Tag | None]:
+        key: tuple[str | None, str | None]
+        if self._aoi is not None:  # its parameters and locals only, whatever the program
+            key = (None, self._aoi.name.upper())
+        elif self._scope is not None and self._scope.upper() in self._scoped_programs:
+            key = (self._scope.upper(), None)
+        else:  # file scope, the controller scope or a program without tags of its own
+            key = (None, None)
+        return self._visible_by_scope.setdefault(key, {})
 
     def lookup(self, name: str) -> Tag | None:
         """A tag visible here: AOI parameters and locals inside an AOI, else program then controller."""
-        if self.aoi is not None:
-            return self.aoi.tags.get(name.upper())
-        return self.model.tag(name, self.scope)
+        tag = self._visible.get(name, _UNRESOLVED)
+        if tag is _UNRESOLVED:
+            if self._aoi is not None:
+                tag = self._aoi.tags.get(name.upper())
+            else:
+                tag = self.model.tag(name, self._scope)
+            self._visible[name] = tag
+        return tag
 
     def find_instruction(self, name: str) -> Instruction | None:
         """A project's add-on instruction, else the catalog instruction of this language."""
@@ -410,7 +534,8 @@ class Checker(LadderChecks):
         args: list[n.Expr], named: n.Arg | None,
     ) -> None:
         """An instruction call, ST statement or ladder element alike: catalog entry and operands."""
-        ins = self.find_instruction(name)
+        plan = self.plan(name)
+        ins = plan.ins
         if ins is None:
             other = self.cat.instruction_any(name)
             if other is not None:
@@ -428,14 +553,30 @@ class Checker(LadderChecks):
         if named is not None:
             self.err("E130", "named parameters are only for function block instances", named.span)
         else:
-            self.operands(ins, args, span)
+            self.operands(ins, args, span, plan)
             if ins.family == "aoi":
                 self.aoi_arguments(name, args)
-        self.require_implementation(ins, name_span)
+        if plan.unimplemented:  # require_implementation, answered once per plan
+            self.require_implementation(ins, name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
                 diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, span)
             )
+
+    def plan(self, name: str) -> _Plan:
+        """The cached catalog (or AOI) entry of an instruction name in the current language."""
+        key = (name, self.language)
+        plan = self._plans.get(key)
+        if plan is None:
+            ins = self.find_instruction(name)
+            if ins is None:
+                plan = _Plan(None)
+            else:
+                required = sum(1 for o in ins.operands if not o.optional)
+                checks = tuple(_OperandCheck.of(ins, o, self.language) for o in ins.operands)
+                plan = _Plan(ins, required, checks, unimplemented(ins, self.language))
+            self._plans[key] = plan
+        return plan
 
     def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
         st = tag.type
@@ -481,36 +622,34 @@ class Checker(LadderChecks):
                 self.err("E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span)  # type: ignore[attr-defined]
 
     def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
-        from ..instructions.registry import lookup
-
-        language = language or self.language
-        if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
-            return
-        if lookup(ins.name, language) is None:
+        if unimplemented(ins, language or self.language):
             self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
 
-    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span) -> None:
-        ops = ins.operands
-        required = sum(1 for o in ops if not o.optional)
-        if len(args) < required or (len(args) > len(ops) and not ins.variadic):
-            expect = f"{required}" if required == len(ops) else f"{required} to {len(ops)}"
-            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {len(args)} given", span)
+    def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
+        ops, checks, required = ins.operands, plan.checks, plan.required
+        given, known = len(args), len(ops)
+        if given < required or (given > known and not ins.variadic):
+            expect = f"{required}" if required == known else f"{required} to {known}"
+            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {given} given", span)
             for e in args:
                 self.expr(e)
             return
-        inputs_end = len(ops)
-        if ins.name == "JSR" and len(args) > 1:  # JSR(Routine, n, n inputs..., returns...)
-            count = const_number(args[1])
-            inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
-        for i, e in enumerate(args):
-            if ins.name == "JSR" and i >= 2:
-                op = ops[2] if i < inputs_end else ops[3]
-            else:
-                op = ops[i] if i < len(ops) else ops[-1]
-            self.operand(ins, op, e, i)
-        if ins.name == "MDAC" and len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
+        if ins.name == "JSR":  # JSR(Routine, n, n inputs..., returns...)
+            inputs_end = known
+            if given > 1:
+                count = const_number(args[1])
+                inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
+            for i, e in enumerate(args):
+                self.operand(ins, checks[i if i < 2 else 2 if i < inputs_end else 3], e)
+        else:
+            for check, e in zip(checks, args, strict=False):
+                self.operand(ins, check, e)
+            if given > known:
+                for e in args[known:]:  # the last operand repeats (variadic)
+                    self.operand(ins, checks[-1], e)
+        if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
-        if ins.name in ("GSV", "SSV") and len(args) >= 3:
+        if ins.name in ("GSV", "SSV") and given >= 3:
             self.system_attribute(ins, args)
 
     def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
@@ -525,61 +664,44 @@ class Checker(LadderChecks):
             what = "set" if ins.name == "SSV" else "read"
             self.err("U303", f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller", args[2].span)
 
-    def operand(self, ins: Instruction, op: Operand, e: n.Expr, index: int) -> None:
+    def operand(self, ins: Instruction, check: _OperandCheck, e: n.Expr) -> None:
+        op = check.op
         if isinstance(e, n.Placeholder):
             if not op.placeholder:
                 what = "cannot be left empty" if self.language == "st" else "needs a value here, not a placeholder"
                 self.err("E128", f"{ins.name} operand {op.name} {what}", e.span)
             return
-        if op.enum is not None and self.enum_operand(ins, op, e):
-            return
-        if self.language == "rll" and not op.expression and _is_expression(e):
-            self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
-            self.expr(e)
-            return
-        if op.format == "routine":
-            if not isinstance(e, n.Name):
-                self.err("E124", "JSR needs a routine name", e.span)
-            elif self.model.routine(e.ident, self.scope) is None:
-                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
-                self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
-            return
-        if op.format == "label":
-            return
-        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
-            self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
-            self.a.type_of[id(e)] = DINT
-            return
-        if op.nullable and const_number(e) == 0:
-            return  # a literal 0 means the optional array is not used
-        if op.format == "array":
-            self.array_operand(ins, op, e)
+        if check.special:
+            if self.special_operand(ins, check, e):
+                return
+        elif check.no_expression and isinstance(e, OPERATIONS) and _is_expression(e):  # tags first
+            self.expression_operand(ins, op, e)
             return
         t = self.expr(e)
         is_tag = isinstance(e, LVALUES) and id(e) not in self.a.enum_of
-        if op.format == "memory" and isinstance(e, n.Bit | n.IndirectBit):
+        if check.memory and isinstance(e, BITS):
             self.err("E106", f"{ins.name} operand {op.name} must be a tag or element, not a bit", e.span)
             return
-        if op.format in ("tag", "memory") and not is_tag:
+        if check.tag and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} must be a tag", e.span)
             return
-        if op.format == "immediate" and is_tag:
+        if check.immediate and is_tag:
             self.err("E107", f"{ins.name} operand {op.name} must be an immediate value", e.span)
             return
-        if op.dir in ("out", "inout") and not is_tag and op.format != "immediate":
+        if check.written and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} is written: it must be a tag", e.span)
             return
         if t is None:
             return
-        if int_literal_for_real(e, t, op.types):
-            return  # SPEC 9.15: integer literals are accepted for REAL operands
-        if not type_matches(t, op.types):
+        if not (t.name in check.elementary if isinstance(t, Elementary) else type_matches(t, op.types)):
+            if int_literal_for_real(e, t, op.types):
+                return  # SPEC 9.15: integer literals are accepted for REAL operands
             if any(x == "AXIS" for x in op.types) or is_axis(t):
                 self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)
             else:
                 self.err("E105", f"{ins.name} operand {op.name} does not accept {t} (accepts {', '.join(op.types)})", e.span)
             return
-        if t is not None and isinstance(t, StructType) and t.name == "MOTION_INSTRUCTION":
+        if isinstance(t, StructType) and t.name == "MOTION_INSTRUCTION":
             key = _text(e).upper()
             if key in self.motion_uses:
                 self.a.diags.append(
@@ -587,6 +709,40 @@ class Checker(LadderChecks):
                 )
             else:
                 self.motion_uses[key] = e.span.line
+
+    def expression_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
+        self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
+        self.expr(e)
+
+    def special_operand(self, ins: Instruction, check: _OperandCheck, e: n.Expr) -> bool:
+        """The checks of an operand that is not a plain value or tag (_OperandCheck.special), in
+        Checker.operand's order; True when the operand is done with."""
+        op = check.op
+        if op.enum is not None and self.enum_operand(ins, op, e):
+            return True
+        if check.no_expression and _is_expression(e):
+            self.expression_operand(ins, op, e)
+            return True
+        fmt = op.format
+        if fmt == "routine":
+            if not isinstance(e, n.Name):
+                self.err("E124", "JSR needs a routine name", e.span)
+            elif self.model.routine(e.ident, self.scope) is None:
+                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
+                self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
+            return True
+        if fmt == "label":
+            return True
+        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
+            self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
+            self.a.type_of[id(e)] = DINT
+            return True
+        if op.nullable and const_number(e) == 0:
+            return True  # a literal 0 means the optional array is not used
+        if fmt == "array":
+            self.array_operand(ins, op, e)
+            return True
+        return False
 
     def array_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
         base = e.base if isinstance(e, n.Index) else e
@@ -639,105 +795,118 @@ class Checker(LadderChecks):
 
     # ------------------------------------------------------------ expressions
     def expr(self, e: n.Expr) -> DataType | None:
-        t = self._expr(e)
+        check = _EXPR_CHECKS.get(type(e))  # one dict lookup instead of an isinstance chain
+        t = check(self, e) if check is not None else self._expr(e)
         if t is not None:
             self.a.type_of[id(e)] = t
         return t
 
-    def _expr(self, e: n.Expr) -> DataType | None:  # noqa: C901
-        if isinstance(e, n.Literal):
-            if e.type == "STRING":
-                return self.model.types.get("STRING")
-            return self.model.types.get(e.type)
-        if isinstance(e, n.Name):
-            return self.name(e)
-        if isinstance(e, n.Member):
-            bt = self.expr(e.base)
-            if bt is None:
-                return None
-            if not isinstance(bt, StructType):
-                self.err("E102", f"{_text(e.base)} is a {bt}: it has no member '{e.name}'", e.name_span)
-                return None
-            m = bt.member(e.name)
-            if m is None or e.name.upper() in bt.hidden:
-                names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
-                self.err("E102", f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}", e.name_span)
-                return None
-            return m[1]
-        if isinstance(e, n.Index):
-            bt = self.expr(e.base)
-            for i in e.indices:
-                it = self.expr(i)
-                if it is not None and not (isinstance(it, Elementary) and (it.is_integer or it.is_bool)):
-                    self.err("E121", f"a subscript must be an integer, not {it}", i.span)
-            if bt is None:
-                return None
-            if not isinstance(bt, ArrayType):
-                self.err("E110", f"{_text(e.base)} is not an array", e.span)
-                return None
-            if len(e.indices) != len(bt.dims):
-                self.err("E110", f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given", e.span)
-                return None
-            for i, size in zip(e.indices, bt.dims, strict=True):
-                v = const_number(i)
-                if isinstance(v, int) and not 0 <= v < size:
-                    self.err("E122", f"subscript {v} is outside 0..{size - 1}", i.span)
-            return bt.elem
-        if isinstance(e, n.Bit):
-            bt = self.expr(e.base)
-            if bt is None:
-                return None
-            if not (isinstance(bt, Elementary) and bt.is_integer):
-                self.err("E121", f"bit access needs an integer, not {bt}", e.span)
-                return None
-            if not 0 <= e.bit < bt.bits:
-                self.err("E122", f"bit {e.bit} is outside 0..{bt.bits - 1} of a {bt}", e.span)
-                return None
-            return BOOL
-        if isinstance(e, n.IndirectBit):
-            bt = self.expr(e.base)
-            it = self.expr(e.index)
-            if it is not None and not (isinstance(it, Elementary) and it.is_integer):
-                self.err("E121", f"a bit number must be an integer, not {it}", e.index.span)
-            if bt is None:
-                return None
-            if not (isinstance(bt, Elementary) and bt.is_integer):
-                self.err("E121", f"bit access needs an integer, not {bt}", e.span)
-                return None
-            return BOOL
-        if isinstance(e, n.Unary):
-            t = self.expr(e.operand)
-            if t is None:
-                return None
-            if not isinstance(t, Elementary):
-                self.err("E116" if isinstance(t, StructType) and t.is_string else "E121", f"{e.op} cannot be applied to {t}", e.span)
-                return None
-            if e.op == "NOT":
-                if t.is_real:
-                    self.err("E121", "NOT needs BOOL or an integer, not a REAL", e.span)
-                    return None
-                return t
-            return DINT if t.is_bool else t
-        if isinstance(e, n.Binary):
-            return self.binary(e)
-        if isinstance(e, n.Call):
-            return self.function(e)
-        if isinstance(e, n.EnumText):
-            self.err("E108", f"'{e.text}' is only valid as an enumerated operand", e.span)
-            return None
-        if isinstance(e, n.Placeholder):
-            return None
+    def _expr(self, e: n.Expr) -> DataType | None:
+        """The check for a node that is not exactly one of the node classes (a subclass)."""
+        for cls, check in _EXPR_CHECKS.items():
+            if isinstance(e, cls):
+                return check(self, e)
         return None
 
-    def name(self, e: n.Name) -> DataType | None:
-        key = e.ident.upper()
-        if key in SYSTEM_FLAGS:
-            if self.language == "st" and key not in ST_SYSTEM_FLAGS:
-                self.err("E123", f"{e.ident} is available in ladder only", e.span)
+    def index(self, e: n.Index) -> DataType | None:
+        bt = self.expr(e.base)
+        for i in e.indices:
+            it = self.expr(i)
+            if it is not None and not (isinstance(it, Elementary) and (it.is_integer or it.is_bool)):
+                self.err("E121", f"a subscript must be an integer, not {it}", i.span)
+        if bt is None:
+            return None
+        if not isinstance(bt, ArrayType):
+            self.err("E110", f"{_text(e.base)} is not an array", e.span)
+            return None
+        if len(e.indices) != len(bt.dims):
+            self.err("E110", f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given", e.span)
+            return None
+        for i, size in zip(e.indices, bt.dims, strict=True):
+            v = const_number(i)
+            if isinstance(v, int) and not 0 <= v < size:
+                self.err("E122", f"subscript {v} is outside 0..{size - 1}", i.span)
+        return bt.elem
+
+    def bit(self, e: n.Bit) -> DataType | None:
+        bt = self.expr(e.base)
+        if bt is None:
+            return None
+        if not (isinstance(bt, Elementary) and bt.is_integer):
+            self.err("E121", f"bit access needs an integer, not {bt}", e.span)
+            return None
+        if not 0 <= e.bit < bt.bits:
+            self.err("E122", f"bit {e.bit} is outside 0..{bt.bits - 1} of a {bt}", e.span)
+            return None
+        return BOOL
+
+    def indirect_bit(self, e: n.IndirectBit) -> DataType | None:
+        bt = self.expr(e.base)
+        it = self.expr(e.index)
+        if it is not None and not (isinstance(it, Elementary) and it.is_integer):
+            self.err("E121", f"a bit number must be an integer, not {it}", e.index.span)
+        if bt is None:
+            return None
+        if not (isinstance(bt, Elementary) and bt.is_integer):
+            self.err("E121", f"bit access needs an integer, not {bt}", e.span)
+            return None
+        return BOOL
+
+    def unary(self, e: n.Unary) -> DataType | None:
+        t = self.expr(e.operand)
+        if t is None:
+            return None
+        if not isinstance(t, Elementary):
+            self.err("E116" if isinstance(t, StructType) and t.is_string else "E121", f"{e.op} cannot be applied to {t}", e.span)
+            return None
+        if e.op == "NOT":
+            if t.is_real:
+                self.err("E121", "NOT needs BOOL or an integer, not a REAL", e.span)
                 return None
-            self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
-            return BOOL
-        tag = self.lookup(e.ident)
+            return t
+        return DINT if t.is_bool else t
+
+    def enum_text(self, e: n.EnumText) -> DataType | None:
+        self.err("E108", f"'{e.text}' is only valid as an enumerated operand", e.span)
+        return None
+
+    def placeholder(self, e: n.Placeholder) -> DataType | None:
+        return None
+
+    def literal(self, e: n.Literal) -> DataType | None:
+        t = self._literal_types.get(e.type, _UNRESOLVED)  # a handful of names: BOOL DINT REAL...
+        if t is _UNRESOLVED:
+            t = self._literal_types[e.type] = self.model.types.get(e.type)
+        return t
+
+    def member(self, e: n.Member) -> DataType | None:
+        bt = self.expr(e.base)
+        if bt is None:
+            return None
+        if not isinstance(bt, StructType):
+            self.err("E102", f"{_text(e.base)} is a {bt}: it has no member '{e.name}'", e.name_span)
+            return None
+        key = e.name.upper()
+        i = bt.index.get(key)  # StructType.member, without upper-casing the name twice
+        if i is None or key in bt.hidden:
+            names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
+            self.err("E102", f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}", e.name_span)
+            return None
+        return bt.members[i][1]
+
+    def name(self, e: n.Name) -> DataType | None:
+        ident = e.ident
+        if ":" in ident:  # every system flag has one (S:N): plain tag names skip the upper()
+            key = ident.upper()
+            if key in SYSTEM_FLAGS:
+                if self.language == "st" and key not in ST_SYSTEM_FLAGS:
+                    self.err("E123", f"{e.ident} is available in ladder only", e.span)
+                    return None
+                self.a.system_of[id(e)] = SYSTEM_FLAGS[key]
+                return BOOL
+        tag = self._visible.get(ident, _UNRESOLVED)  # self.lookup, inlined: a cache hit mostly
+        if tag is _UNRESOLVED:
+            tag = self.lookup(ident)
         if tag is None:
             pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
             names = [t.name for t in pool]
@@ -818,11 +987,28 @@ class Checker(LadderChecks):
         return t
 
 
+# Checker.expr's check for each expression node class (in the order an isinstance chain
+# would try them, for _expr's subclass fallback)
+_EXPR_CHECKS: dict[type, Callable[[Checker, Any], DataType | None]] = {
+    n.Literal: Checker.literal,
+    n.Name: Checker.name,
+    n.Member: Checker.member,
+    n.Index: Checker.index,
+    n.Bit: Checker.bit,
+    n.IndirectBit: Checker.indirect_bit,
+    n.Unary: Checker.unary,
+    n.Binary: Checker.binary,
+    n.Call: Checker.function,
+    n.EnumText: Checker.enum_text,
+    n.Placeholder: Checker.placeholder,
+}
+
+
 def _is_expression(e: n.Expr) -> bool:
     """An operand that computes (a + b, ABS(x), NOT b), as opposed to a tag or a literal (-5)."""
     if isinstance(e, n.Unary):
         return not (e.op == "-" and isinstance(e.operand, n.Literal))
-    return isinstance(e, n.Binary | n.Call)
+    return isinstance(e, COMPUTED)
 
 
 def _enum_text(e: n.Expr) -> str | None:

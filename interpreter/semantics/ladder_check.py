@@ -21,17 +21,20 @@ class LadderChecks:
 
     a: Analysis
     path: str
+    jumps_seen: bool = False  # an LBL or JMP was met by `sequence` in the current routine
 
     def err(self, code: str, msg: str, span: n.Span) -> None: ...  # provided by Checker
 
     def ladder_instr(self, i: n.LadderInstr) -> None: ...  # provided by Checker
 
     def rungs(self, rungs: list[n.Rung]) -> None:
+        self.jumps_seen = False
         for rung in rungs:
             if not rung.elements:
                 self.err("E129", f"rung {rung.number} is empty: give it at least one instruction (NOP)", rung.span)
             self.sequence(rung.elements, feeds=False)
-        self.labels(rungs)
+        if self.jumps_seen:  # most routines have no label: spare them a second walk
+            self.labels(rungs)
 
     def labels(self, rungs: list[n.Rung]) -> None:
         """E131: every JMP names an LBL of the same routine; an LBL is unique and first on its rung
@@ -68,6 +71,8 @@ class LadderChecks:
         for k, e in enumerate(elements):
             if isinstance(e, n.LadderInstr):
                 self.ladder_instr(e)
+                if e.name.upper() in ("LBL", "JMP"):  # the instructions `labels` checks
+                    self.jumps_seen = True
             else:
                 shorted |= self.branch(e, feeds or k < len(elements) - 1)
         return shorted

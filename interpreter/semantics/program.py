@@ -52,7 +52,25 @@ class TaskInfo:
 
 def scope_key(program: str, name: str) -> str:
     """Key of a program-scope tag in ProgramModel.tags (controller tags use the plain name)."""
-    return f"PROGRAM:{program.upper()}.{name.upper()}"
+    return f"PROGRAM:{program.upper()}.{name.upper()}"  # scoped_programs reads this form back
+
+
+def scoped_programs(tags: dict[str, Tag]) -> set[str]:
+    """Upper-case names of the programs that may own tags among `tags` (keys from scope_key).
+
+    A program not in the set has no tags of its own: it sees the controller scope. A key
+    `PROGRAM:A.B.NAME` counts for `A` and for `A.B`, as a dot in the program name cannot be
+    told apart here; naming one program too many never hides a tag.
+    """
+    programs: set[str] = set()
+    for key in tags:
+        if key.startswith("PROGRAM:"):
+            rest = key[len("PROGRAM:"):]
+            dot = rest.find(".")
+            while dot >= 0:
+                programs.add(rest[:dot])
+                dot = rest.find(".", dot + 1)
+    return programs
 
 
 @dataclass(slots=True)
