@@ -194,6 +194,35 @@ def test_timers_accumulate_virtual_milliseconds(st) -> None:
     assert r.tags == {"t.ACC": 90}
 
 
+# ------------------------------------------------------------------ 3.4 / 9.5 faults
+FAULTS = """VAR n, z, q : DINT; a : DINT[3]; END_VAR
+n := n + 1;
+q := 7 / z;
+IF n > 2 THEN
+  a[n] := 1;
+END_IF;
+"""
+
+
+def test_fault_entries_keys_minor_count_and_major_stop(st) -> None:
+    """SPEC 3.4 / 9.5: `faults` entries have type, code, major, message, file, line, column;
+    a minor 4/4 is one entry per location with `count`; a major fault stops the run in that
+    scan, the report still gives the tag values then, exit 3."""
+    r = st.run(FAULTS, "n", "q", scans=10)
+    assert r.code == 3
+    minor, major = r.json["faults"]
+    path = str(st.tmp / "main.st")
+    # scans 0, 1, 2 divide by zero (n = 1, 2, 3); in scan 2 (n = 3) a[3] is out of range
+    assert {k: v for k, v in minor.items() if k != "message"} == {
+        "type": 4, "code": 4, "major": False, "file": path, "line": 3, "column": 6, "count": 3}
+    assert set(major) == {"type", "code", "major", "message", "file", "line", "column"}
+    assert (major["type"], major["code"], major["major"], major["line"], major["column"]) == (4, 20, True, 5, 3)
+    assert r.json["scans"] == 3 and r.tags == {"n": 3, "q": 7}  # integer / 0 keeps Source A
+    r = st.cli("run", str(st.tmp / "main.st"), "--scans", "10")
+    assert r.code == 3
+    assert f"{path}:5:3: major fault type 4 code 20" in r.err
+
+
 # ------------------------------------------------------------------ 6 command line
 def test_watch_forms_control_bit_array_element_and_bit(st) -> None:
     """SPEC 6: `--watch` takes `ctl.PC`, `arr[2]`, `d.5`, repeatable, keyed by the expression as given."""

@@ -337,7 +337,7 @@ def parse_expression(text: str) -> n.Expr:
 _FRIENDLY = {
     "SEMI": "';'", "NAME": "a name", "MEMBER_NAME": "a member name", "QNAME": "a name", "PARAM_REF": "a name", "INT": "a number", "REAL": "a number",
     "RPAR": "')'", "LPAR": "'('", "COMMA": "','", "COLON": "':'", "ASSIGN": "':='",
-    "RSQB": "']'", "LSQB": "'['", "DOT": "'.'", "$END": "end of file",
+    "NR_ASSIGN": "'[:=]'", "RSQB": "']'", "LSQB": "'['", "DOT": "'.'", "$END": "end of file",
 }
 
 
