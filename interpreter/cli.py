@@ -81,18 +81,28 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 # ------------------------------------------------------------------ run
-def parse_set_value(text: str) -> object:
-    """An ST literal for --set: numbers (any radix), TRUE/FALSE, 'strings'."""
+def parse_set_value(text: str, target: DataType | None = None) -> object:
+    """An ST literal for --set: numbers (any radix), TRUE/FALSE, 'strings'.
+
+    A radix literal is a bit pattern, as in an ST assignment: for an integer `target` it is
+    read at the target's width (`16#FFFF_FFFF` is 4294967295 in a UDINT, `16#FF` is -1 in
+    a SINT); a pattern wider than the target is left for the range check to refuse.
+    """
     t = text.strip()
     if t.upper() in ("TRUE", "FALSE"):
         return 1 if t.upper() == "TRUE" else 0
     if t.startswith("'") and t.endswith("'") and len(t) >= 2:
         return parse_string(t)
     neg = t.startswith("-")
+    digits = t[1:] if neg or t.startswith("+") else t
     try:
-        value, _ = parse_number(t[1:] if neg or t.startswith("+") else t)
+        value, _ = parse_number(digits)
     except ValueError:
         raise UsageError(f"--set: '{text}' is not an ST literal") from None
+    if "#" in digits and isinstance(target, Elementary) and target.is_integer and isinstance(value, int):
+        pattern = int(digits.replace("_", "").split("#", 1)[1].rstrip("uUlL"), int(digits.split("#", 1)[0]))
+        if pattern < 1 << target.bits:
+            value = pattern - (1 << target.bits) if target.signed and pattern >= 1 << (target.bits - 1) else pattern
     return -value if neg else value
 
 
@@ -132,8 +142,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         if not sep:
             raise UsageError(f"--set expects TAG=VALUE, got '{item}'")
         try:
-            _, _, setter = ctl.reference(name)
-            setter(parse_set_value(value))
+            _, target, setter = ctl.reference(name)
+            setter(parse_set_value(value, target))
         except WatchError as exc:
             raise UsageError(f"--set {exc}") from None
     scans = args.scans if args.scans is not None else round((1.0 if args.duration is None else args.duration) * 1000.0 / args.scan_period)

@@ -15,7 +15,7 @@ from ..syntax import nodes as n
 from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
 from ..vm.context import DEFAULT_WATCHDOG, ExecContext, MajorFault
-from ..vm.values import string_text
+from ..vm.values import set_string, string_text
 from .aoi import AoiRoutines, make_impls
 from .loader import InputError, Loaded
 from .motion import MotionRuntime
@@ -236,8 +236,16 @@ class Controller:
         fn = self.ns[fname]
 
         def setter(value: object) -> None:
+            if isinstance(t, StructType) and t.is_string:
+                if not isinstance(value, bytes):
+                    raise WatchError(f"'{text}' is a STRING: give a quoted literal such as 'abc'")
+                if len(value) > len(fn(self.T, self.ctx)[1]):  # type: ignore[index]
+                    raise WatchError(f"'{text}': '{value.decode('latin-1')}' is longer than the tag's "
+                                     f"{len(fn(self.T, self.ctx)[1])} characters")  # type: ignore[index]
+                set_string(fn(self.T, self.ctx), value)  # type: ignore[arg-type]  # the live structure
+                return
             if not isinstance(t, Elementary):
-                raise WatchError(f"'{text}' is a {t}: only elementary tags can be set")
+                raise WatchError(f"'{text}' is a {t}: only elementary tags and strings can be set")
             _check_settable(text, value, t)
             store_ops = place_ops + [Ins(Op.CONST, (value, _literal_type(value, t))), Ins(Op.STORE, t)]
             tr2 = Translator(rc.code, self.ns, "_s", store_ops)

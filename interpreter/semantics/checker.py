@@ -330,7 +330,10 @@ class Checker(LadderChecks):
                     return
                 self.err("E118", f"a list initialiser needs an array, not {t}", init.span)
                 return
-            if len(init.items) > t.size:
+            # SPEC 2.1: a wrong element count is an error, too few or too many; a CAM point
+            # list may be shorter than its array (MCCP's Length says how many are used).
+            short_ok = isinstance(t.elem, StructType) and t.elem.name == "CAM"
+            if len(init.items) > t.size or (len(init.items) < t.size and not short_ok):
                 self.err("E118", f"{len(init.items)} elements given for an array of {t.size}", init.span)
             for item in init.items:
                 self.check_init(item, t.elem)

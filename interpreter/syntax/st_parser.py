@@ -125,11 +125,13 @@ class AstBuilder(Transformer):
         v = int(parse_number(str(c[-1]))[0])
         return -v if len(c) == 2 else v
 
+    # The brackets are kept (named terminals in the grammar) so that the initialiser's span
+    # covers them: E118 then marks `[1, 2]` as written, not just the items inside.
     def array_init(self, c: list) -> n.ArrayInit:
-        return n.ArrayInit(list(c), _span(c[0]).to(_span(c[-1])))
+        return n.ArrayInit(list(c[1:-1]), tspan(c[0]).to(tspan(c[-1])))
 
     def struct_init(self, c: list) -> n.StructInit:
-        return n.StructInit(list(c), c[0][1].to(_span(c[-1][2])))
+        return n.StructInit(list(c[1:-1]), tspan(c[0]).to(tspan(c[-1])))
 
     def member_init(self, c: list) -> tuple[str, n.Span, object]:
         return (str(c[0]), tspan(c[0]), c[1])
@@ -335,7 +337,7 @@ def parse_expression(text: str) -> n.Expr:
 _FRIENDLY = {
     "SEMI": "';'", "NAME": "a name", "MEMBER_NAME": "a member name", "QNAME": "a name", "PARAM_REF": "a name", "INT": "a number", "REAL": "a number",
     "RPAR": "')'", "LPAR": "'('", "COMMA": "','", "COLON": "':'", "ASSIGN": "':='",
-    "RSQB": "']'", "LSQB": "'['", "DOT": "'.'", "$END": "end of file",
+    "NR_ASSIGN": "'[:=]'", "RSQB": "']'", "LSQB": "'['", "DOT": "'.'", "$END": "end of file",
 }
 
 
@@ -424,6 +426,10 @@ def _find_open(stack: list, kind: str) -> Token | None:
 def _at(tok: Token) -> n.Span:
     if tok.line is None:
         return n.Span(1, 1, 1, 1)
+    if tok.type == "$END" and tok.end_line is not None and tok.end_column is not None:
+        # Lark gives end of input the last token's position; what is missing belongs just
+        # after that token (SPEC 9.10: where the parser expected it), so point there.
+        return n.Span(tok.end_line, tok.end_column, tok.end_line, tok.end_column + 1)
     return n.Span(tok.line, tok.column or 1, tok.end_line or tok.line, tok.end_column or (tok.column or 1) + 1)
 
 

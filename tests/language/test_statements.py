@@ -195,12 +195,12 @@ def test_three_dimensional_arrays_row_major(st) -> None:
 
 def test_array_initialiser_and_variable_subscript(st) -> None:
     src = """
-    VAR a : DINT[5] := [10, 20, 30]; i : DINT := 4; s, x : DINT; END_VAR
+    VAR a : DINT[5] := [10, 20, 30, 0, 0]; i : DINT := 4; s, x : DINT; END_VAR
     a[i] := a[0] + a[2];
     FOR x := 0 TO 4 DO s := s + a[x]; END_FOR;
     """
     t = st.tags(src, "a", "s")
-    assert t["a"] == [10, 20, 30, 0, 40]  # unlisted elements are 0; a[4] = 10 + 30
+    assert t["a"] == [10, 20, 30, 0, 40]  # a[4] = 10 + 30
     assert t["s"] == 100  # 10 + 20 + 30 + 0 + 40
 
 
@@ -212,7 +212,7 @@ def test_udt_members_nested_arrays_and_initialisers(st) -> None:
     END_TYPE
     VAR
       p : Pt := (x := 3, y := 4.5);
-      segs : Seg[3] := [(a := (x := 1), len := 2.5), (b := (x := 7, y := 8.0), tags := [5, 6])];
+      segs : Seg[3] := [(a := (x := 1), len := 2.5), (b := (x := 7, y := 8.0), tags := [5, 6]), (len := 0.0)];
       total : DINT;
       i : DINT;
     END_VAR
@@ -231,6 +231,14 @@ def test_udt_members_nested_arrays_and_initialisers(st) -> None:
     assert t["segs[2].b.y"] == 12.5  # 4.5 + 8.0
     assert t["segs[2].tags[1]"] == 11  # 5 + 6
     assert t["total"] == 38  # a.x: 1 + 0 + 30; b.x: 0 + 7 + 0
+
+
+def test_array_initialiser_needs_one_value_per_element(st) -> None:
+    """SPEC 2.1: a wrong element count is a verification error, too few as too many (decision 0080)."""
+    for init, given in (("[1, 2]", 2), ("[1, 2, 3, 4]", 4)):
+        r = st.check(f"VAR a : DINT[3] := {init}; END_VAR\na[0] := 1;\n")
+        assert r.code == 1
+        assert [(d["code"], d["message"]) for d in r.json] == [("E118", f"{given} elements given for an array of 3")]
 
 
 def test_udt_member_default(st) -> None:
