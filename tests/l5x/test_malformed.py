@@ -130,3 +130,18 @@ def test_run_of_an_export_without_programs_scans_nothing(capsys: pytest.CaptureF
     assert code == 0, cap.err
     assert json.loads(cap.out) == {"time": 0.003, "scans": 3, "tags": {"K": 7}, "faults": [], "diagnostics": []}
 
+
+@pytest.mark.parametrize("encoding", ["x", "utf-32", "punycode", "rot13"])
+def test_unreadable_declared_encoding(capsys: pytest.CaptureFixture[str], tmp_path: Path, encoding: str) -> None:
+    # expat hands encodings it does not know itself to Python's codecs, which raised
+    # LookupError/ValueError out of the reader (a traceback). Now S007 at the encoding's value:
+    # `<?xml version="1.0" encoding="` is 30 characters, so the value starts in column 31.
+    p = tmp_path / "enc.L5X"
+    p.write_text(f'<?xml version="1.0" encoding="{encoding}"?>\n'
+                 '<RSLogix5000Content SchemaRevision="1.0"><Controller Name="T"/></RSLogix5000Content>\n')
+    capsys.readouterr()
+    code = main(["check", str(p), "--format", "json"])
+    diags = json.loads(capsys.readouterr().out)
+    assert code == 1
+    assert [(d["code"], d["line"], d["column"]) for d in diags] == [("S007", 1, 31)]
+    assert f"'{encoding}'" in diags[0]["message"]
