@@ -120,6 +120,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UsageError("--watchdog must be > 0")
     if args.coarse_update is not None and not 0 < args.coarse_update < math.inf:
         raise UsageError("--coarse-update must be a finite number of milliseconds > 0")
+    scans = args.scans if args.scans is not None else _scan_count(args.duration, args.scan_period)
     if args.plot is not None:  # refuse before running (docs/decisions/0102-plot.md)
         if args.plot.suffix.lower() != ".png":
             raise UsageError(f"--plot writes a PNG image: '{args.plot}' should end in .png")
@@ -146,7 +147,6 @@ def cmd_run(args: argparse.Namespace) -> int:
             setter(parse_set_value(value, target))
         except WatchError as exc:
             raise UsageError(f"--set {exc}") from None
-    scans = args.scans if args.scans is not None else round((1.0 if args.duration is None else args.duration) * 1000.0 / args.scan_period)
     trace_rows: list[list[object]] = []
     record = args.trace is not None or args.plot is not None
     ok = ctl.prescan()
@@ -175,6 +175,15 @@ def cmd_run(args: argparse.Namespace) -> int:
         for f in faults:
             print(f.text(), file=sys.stderr)
     return EXIT_OK if ok else EXIT_FAULT
+
+
+def _scan_count(duration: float | None, scan_period_ms: float) -> int:
+    """Scans in `duration` simulated seconds; a duration so long that the count overflows is refused."""
+    seconds = 1.0 if duration is None else duration
+    total = seconds * 1000.0 / scan_period_ms
+    if not math.isfinite(total):
+        raise UsageError(f"--duration {seconds:g} s at a {scan_period_ms:g} ms scan period is too many scans to count")
+    return round(total)
 
 
 def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:

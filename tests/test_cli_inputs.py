@@ -148,6 +148,10 @@ def test_no_program_given(capsys: pytest.CaptureFixture[str]) -> None:
         (["--duration", "-0.5"], "--duration"),
         (["--duration", "inf"], "--duration"),
         (["--duration", "1", "--scans", "5"], "not allowed"),
+        # 1e308 s x 1000 / 1 ms overflows a float to inf: no scan count, refused (was a traceback)
+        (["--duration", "1e308"], "--duration 1e+308 s"),
+        # the default 1 s at a 5e-324 ms (subnormal) period is 1000 / 5e-324 = inf scans as well
+        (["--scan-period", "5e-324"], "too many scans"),
         (["--watchdog", "0"], "--watchdog"),
         (["--set", "n"], "TAG=VALUE"),
         (["--set", "n=abc"], "not an ST literal"),

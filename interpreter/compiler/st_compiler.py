@@ -57,10 +57,14 @@ class RoutineCompiler:
         self.prescan(self.r.body)
         return self.code
 
-    def block(self, body: list[n.Stmt], in_loop: bool) -> None:
+    def block(self, body: list[n.Stmt], in_loop: bool, loop: n.Span | None = None) -> None:
         simple = sum(1 for s in body if not isinstance(s, n.Empty))
-        if simple:
-            self.emit(Op.STEP, (simple, in_loop), body[0].span if in_loop else None)
+        if in_loop:
+            # An iteration without statements counts one (SPEC 9.4 counts loop iterations), so
+            # `WHILE TRUE DO END_WHILE;` trips the watchdog instead of hanging; it is located at the loop.
+            self.emit(Op.STEP, (max(simple, 1), True), body[0].span if simple else loop)
+        elif simple:
+            self.emit(Op.STEP, (simple, False))
         for s in body:
             self.stmt(s)
 
@@ -91,11 +95,11 @@ class RoutineCompiler:
             self.emit(Op.LOOP)
             self.cond(s.cond)
             self.emit(Op.BREAK_IFNOT)
-            self.block(s.body, True)
+            self.block(s.body, True, s.span)
             self.emit(Op.END)
         elif isinstance(s, n.Repeat):
             self.emit(Op.LOOP)
-            self.block(s.body, True)
+            self.block(s.body, True, s.span)
             self.cond(s.cond)
             self.emit(Op.NOT, BOOL)
             self.emit(Op.BREAK_IFNOT)
@@ -192,7 +196,7 @@ class RoutineCompiler:
             self.emit(Op.END)
             self.emit(Op.CONST, (1, BOOL))
         self.emit(Op.BREAK_IFNOT)
-        self.block(s.body, True)
+        self.block(s.body, True, s.span)
         self.place(s.var)
         self.place(s.var)
         self.emit(Op.LOAD, var_t)

@@ -15,7 +15,12 @@ Decisions (1756-RM003 "File/Misc" chapter and Studio 5000 help):
   written (memmove), so overlapping copies within one array are well defined.
 - Length <= 0 copies / fills nothing.
 - CPS is COP: this interpreter has no task that could interrupt a copy.
-- FLL converts Source to the Dest element type (REAL -> integer rounds half to even).
+- FLL converts Source to the Dest element type (REAL -> integer rounds half to even). Into
+  structure elements (a UDT, TIMER, STRING...) the Source is written unconverted, its bytes
+  repeated over Length * (element size) bytes (1756-RM003). The VM hands Source over as a
+  value, not a typed location, so an integer is laid out as a DINT (LINT beyond the DINT
+  range) and a REAL as a REAL: exact for the usual `FLL(0, udt, n)` clear, and for DINT or
+  REAL sources; a non-zero SINT or INT source is widened to 4 bytes first.
 - SIZE with a dimension the array does not have: major fault 4/20 (subscript range).
 - SWPB on an INT source swaps its two bytes whatever the mode; an INT result stored in a
   DINT is sign-extended (catalog doc).
@@ -25,7 +30,7 @@ from __future__ import annotations
 
 from math import ceil
 
-from ..semantics.types import DINT, INT, DataType, Elementary
+from ..semantics.types import DINT, INT, LINT, REAL, DataType, Elementary
 from ..vm.context import ExecContext
 from ..vm.refs import ArrayRef, Ref
 from ..vm.values import byte_size, convert, from_bytes, to_bytes, wrap
@@ -84,12 +89,27 @@ def fll(ctx: ExecContext, rung: bool, source: object, dest: object, length: int)
     if int(length) <= 0:
         return
     elements, start, etype, available = _block(dest, "Dest")
-    if not isinstance(etype, Elementary):
-        raise TypeError(f"FLL into {etype} elements is not supported")
     value = source.get() if isinstance(source, Ref) else source
+    count = min(int(length), available)
+    if not isinstance(etype, Elementary):
+        _fill_structures(elements, start, etype, count, value)
+        return
     converted = convert(value, etype)
-    for i in range(min(int(length), available)):
+    for i in range(count):
         elements[start + i] = converted
+
+
+def _fill_structures(elements: list, start: int, etype: DataType, count: int, value: object) -> None:
+    """Structure elements get the source's bytes unconverted, repeated over every byte."""
+    if isinstance(value, float):
+        pattern = to_bytes(value, REAL)
+    else:
+        v = int(value)  # type: ignore[call-overload]
+        pattern = to_bytes(v, DINT if -(1 << 31) <= v < (1 << 31) else LINT)
+    size = byte_size(etype)
+    data = pattern * (count * size // len(pattern) + 1)
+    for i in range(count):
+        _assign(elements, start + i, from_bytes(data[i * size : (i + 1) * size], etype))
 
 
 @implements("SIZE")

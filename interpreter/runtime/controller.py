@@ -87,7 +87,9 @@ class Controller:
             self.schedule = Schedule.for_project(self.model, mains)
         else:
             self.routines = self._compile_routines(self.model.routines, self.ns, "")
-            self.schedule = Schedule.single(self.routines[self.model.main.upper()])
+            main = self.routines.get(self.model.main.upper())
+            # An export without programs (an Add-On Instruction export) has nothing to scan.
+            self.schedule = Schedule.single(main) if main is not None else Schedule()
         self.scans = 0
         self.major_fault: Fault | None = None
 

@@ -650,10 +650,22 @@ class Checker(LadderChecks):
             if given > known:
                 for e in args[known:]:  # the last operand repeats (variadic)
                     self.operand(ins, checks[-1], e)
+        if ins.family == "compare" and given >= 2:
+            self.compare_kinds(ins, args)
         if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
         if ins.name in ("GSV", "SSV") and given >= 3:
             self.system_attribute(ins, args)
+
+    def compare_kinds(self, ins: Instruction, args: list[n.Expr]) -> None:
+        """Ladder compares take two numbers or two STRINGs (each operand alone accepts either)."""
+        a, b = (self.a.type_of.get(id(e)) for e in args[:2])
+        if a is None or b is None:
+            return
+        a_str = isinstance(a, StructType) and a.is_string
+        b_str = isinstance(b, StructType) and b.is_string
+        if a_str != b_str:
+            self.err("E116", f"{ins.name} cannot compare a STRING with a number", args[1].span)
 
     def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
         """U303 for a GSV/SSV class and attribute pair the simulator does not model."""

@@ -9,6 +9,7 @@ into 1-based line/column on demand, so AST spans can point into the .L5X file it
 
 from __future__ import annotations
 
+import re
 from bisect import bisect_right
 from dataclasses import dataclass, field
 from xml.parsers import expat
@@ -82,6 +83,7 @@ class Positions:
 
 
 _CDATA_OPEN = len(b"<![CDATA[")
+_ENCODING = re.compile(rb"""(encoding\s*=\s*["'])([^"']*)""")  # the XML declaration's encoding
 
 
 def parse_xml(data: bytes) -> tuple[XElem, Positions]:
@@ -146,6 +148,13 @@ def parse_xml(data: bytes) -> tuple[XElem, Positions]:
         if line <= len(pos.starts):
             line, col = pos.at(pos.starts[line - 1] + exc.offset)
         raise XmlRejected(f"malformed XML: {msg}", line, col) from None
+    except (LookupError, ValueError):
+        # Expat reads UTF-8/16, ASCII and Latin-1 itself and asks Python's codecs for any other
+        # declared encoding; those raise for unknown names, multi-byte or non-text codecs.
+        m = _ENCODING.search(data, 0, 512)
+        line, col = pos.at(m.end(1)) if m else (1, 1)
+        name = m.group(2).decode("ascii", "replace") if m else "?"
+        raise XmlRejected(f"malformed XML: the declared encoding '{name}' cannot be read (exports are UTF-8)", line, col) from None
     if not root:
         raise XmlRejected("no XML element found", 1, 1)
     return root[0], pos

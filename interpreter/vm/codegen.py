@@ -31,7 +31,7 @@ from .ladder_helpers import (
     store_flags,
 )
 from .refs import ArrayRef, BitRef, Ref
-from .values import f32, real_to_int, set_string, string_text, wrap
+from .values import f32, real_mod, real_to_int, set_string, string_text, wrap
 
 _PY_CMP = {"=": "==", "<>": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 
@@ -78,7 +78,7 @@ def _fmod(ctx: ExecContext, a: float, b: float, site: int, single: bool) -> floa
     if b == 0.0:
         ctx.minor(4, 4, "MOD by zero", site)
         return math.nan
-    r = a - math.trunc(a / b) * b
+    r = real_mod(a, b)
     return f32(r) if single else r
 
 

@@ -8,7 +8,7 @@ from typing import Any
 from ..instructions.ladder_status import _int_overflow, set_flags
 from ..semantics.types import Elementary, Kind
 from .context import ExecContext, MajorFault
-from .values import convert, f32, wrap
+from .values import convert, f32, real_mod, wrap
 
 
 def store_flags(ctx: ExecContext, x: Any, t: Elementary) -> int | float:
@@ -82,7 +82,7 @@ def over_fdiv(ctx: ExecContext, a: float, b: float, single: bool) -> float:
 
 
 def over_fmod(ctx: ExecContext, a: float, b: float, single: bool) -> float:
-    r = math.nan if b == 0.0 else a - math.trunc(a / b) * b
+    r = real_mod(a, b)
     return over_real(ctx, f32(r) if single else r)
 
 

@@ -37,6 +37,17 @@ def wrap(v: int, bits: int, signed: bool) -> int:
     return v & mask
 
 
+def real_mod(a: float, b: float) -> float:
+    """REAL `a MOD b` = a - TRUNC(a / b) * b, with IEEE fmod's answers where that formula has none:
+    NaN for b = 0 or an infinite or NaN operand, and a itself for a finite a MOD +-inf."""
+    q = a / b if b != 0.0 else math.nan
+    if not math.isfinite(q):
+        return math.nan
+    if math.isinf(b):
+        return a
+    return a - math.trunc(q) * b
+
+
 def real_to_int(x: float) -> int:
     """REAL -> integer: round to nearest, ties to even (Python's round does exactly that)."""
     if math.isnan(x):

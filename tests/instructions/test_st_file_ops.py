@@ -114,6 +114,24 @@ def test_fll_zero_length_does_nothing() -> None:
     assert d == [1, 1]
 
 
+def test_fll_into_structures_writes_the_source_bytes_unconverted() -> None:
+    # FLL into STRING elements raised TypeError (a traceback, found by fuzzing). Into a
+    # structure the source is written without conversion, its bytes repeated (1756-RM003).
+    t = TypeTable().get("STRING")
+    a = [default_value(t) for _ in range(3)]
+    for v in a:
+        set_string(v, b"hi")
+    fll(ExecContext(), True, 0, ArrayRef(a, 1, t, (3,)), 5)  # Length 5 stops at the array end
+    assert [string_text(v) for v in a] == [b"hi", b"", b""] and a[2][0] == 0  # LEN 0, DATA zeros
+    fll(ExecContext(), True, 0x41414141, ArrayRef(a, 0, t, (3,)), 1)
+    # every byte is 16#41 = 'A': LEN reads 16#41414141 = 1094795585, all 82 DATA bytes are 'A'
+    assert a[0][0] == 1094795585 and string_text(a[0]) == b"A" * 82
+    fll(ExecContext(), True, 1.0, ArrayRef(a, 0, t, (3,)), 1)
+    # REAL 1.0 = 16#3F800000, little-endian bytes 00 00 80 3F; as SINTs 0, 0, -128, 63
+    assert a[0][0] == 0x3F800000 and a[0][1][:8] == [0, 0, -128, 63] * 2
+    assert string_text(a[1]) == b""  # only Length 1 element written
+
+
 # ------------------------------------------------------------------ SIZE
 def test_size_of_each_dimension_of_3d_array() -> None:
     arr = ArrayRef([0] * 24, 0, DINT, (2, 3, 4))  # DINT[2,3,4]: 2*3*4 = 24 elements

@@ -110,3 +110,38 @@ def test_other_files_with_an_l5x_are_refused(capsys: pytest.CaptureFixture[str],
     code = main(["run", str(FIX / "st_project.L5X"), str(st)])
     assert code == 2
     assert "whole project" in capsys.readouterr().err
+
+
+def test_run_of_an_export_without_programs_scans_nothing(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    # An Add-On Instruction export (or a controller with no programs) used to crash `run`
+    # looking up a main routine that does not exist. With no program there is nothing to
+    # scan: the 3 scans run empty, and the one controller tag keeps its initial value 7.
+    p = tmp_path / "no_programs.L5X"
+    p.write_text('<?xml version="1.0" encoding="UTF-8" standalone="yes"?>\n'
+                 '<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="32.00" TargetName="T" TargetType="Controller">\n'
+                 '<Controller Use="Target" Name="T">\n'
+                 '<Tags><Tag Name="K" TagType="Base" DataType="DINT"><Data Format="Decorated">\n'
+                 '<DataValue DataType="DINT" Radix="Decimal" Value="7"/></Data></Tag></Tags>\n'
+                 '</Controller>\n'
+                 '</RSLogix5000Content>\n')
+    capsys.readouterr()
+    code = main(["run", str(p), "--scans", "3", "--json"])
+    cap = capsys.readouterr()
+    assert code == 0, cap.err
+    assert json.loads(cap.out) == {"time": 0.003, "scans": 3, "tags": {"K": 7}, "faults": [], "diagnostics": []}
+
+
+@pytest.mark.parametrize("encoding", ["x", "utf-32", "punycode", "rot13"])
+def test_unreadable_declared_encoding(capsys: pytest.CaptureFixture[str], tmp_path: Path, encoding: str) -> None:
+    # expat hands encodings it does not know itself to Python's codecs, which raised
+    # LookupError/ValueError out of the reader (a traceback). Now S007 at the encoding's value:
+    # `<?xml version="1.0" encoding="` is 30 characters, so the value starts in column 31.
+    p = tmp_path / "enc.L5X"
+    p.write_text(f'<?xml version="1.0" encoding="{encoding}"?>\n'
+                 '<RSLogix5000Content SchemaRevision="1.0"><Controller Name="T"/></RSLogix5000Content>\n')
+    capsys.readouterr()
+    code = main(["check", str(p), "--format", "json"])
+    diags = json.loads(capsys.readouterr().out)
+    assert code == 1
+    assert [(d["code"], d["line"], d["column"]) for d in diags] == [("S007", 1, 31)]
+    assert f"'{encoding}'" in diags[0]["message"]

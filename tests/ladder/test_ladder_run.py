@@ -9,6 +9,7 @@ by hand in the comments.
 from __future__ import annotations
 
 import csv
+import math
 from pathlib import Path
 from typing import Any
 
@@ -166,6 +167,20 @@ def test_cpt_evaluates_in_the_promoted_type_and_converts_at_the_end(st: Runner) 
     # REAL dest of the DINT quotient 2 -> 2.0; 200 into SINT wraps to 200 - 256 = -56;
     # INT * INT stays INT: 90000 - 65536 = 24464; -2.5 -> ties to even -2
     assert t == {"d1": 2, "d2": 2, "d3": 4, "d4": 24464, "d5": -2, "r1": 2.0, "s1": -56}
+
+
+def test_cpt_real_mod_of_infinity_is_nan(st: Runner) -> None:
+    # TRUNC(inf / 2.0) has no integer value: the ladder CPT MOD raised OverflowError (a
+    # traceback, found by fuzzing). IEEE fmod: inf MOD 2.0 = NaN, 7.5 MOD inf = 7.5.
+    src = """VAR inf : REAL; m1, m2 : REAL; END_VAR
+    CPT(inf, 3.0e38 * 10.0);
+    CPT(m1, inf MOD 2.0);
+    CPT(m2, 7.5 MOD inf);
+    """
+    r = st.run(src, "inf", "m1", "m2", name="main.rll")
+    assert r.code == 0, r.err
+    t = r.tags
+    assert t["inf"] == math.inf and math.isnan(t["m1"]) and t["m2"] == 7.5
 
 
 def test_mov_converts_like_an_assignment_and_sets_flags(st: Runner) -> None:

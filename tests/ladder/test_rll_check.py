@@ -103,6 +103,18 @@ def test_every_ladder_code_has_a_fixture() -> None:
 
 
 # ------------------------------------------------------------------ positions and messages
+@pytest.mark.parametrize("rung", ["LES(s,x)OTE(b);\n", "EQU(5,s)OTE(b);\n"])
+def test_compare_of_a_string_with_a_number(st, rung: str) -> None:
+    # Each compare operand alone accepts a number or a STRING, so LES(s,x) passed the check and
+    # crashed at run time (a TypeError traceback, found by fuzzing). Line 13 follows the 12-line
+    # HEADER; the second operand starts in column 7 of 'LES(s,x)' / 'EQU(5,s)'.
+    exit_code, diags = _check(st, rung)
+    assert exit_code == 1
+    assert [(d["code"], d["line"], d["column"]) for d in diags] == [("E116", 13, 7)]
+    _, clean = _check(st, "VAR\n  s, s2 : STRING;\n  b : BOOL;\nEND_VAR\nLES(s,s2)OTE(b);\n")
+    assert clean == []
+
+
 def test_positions_are_file_positions(st) -> None:
     # HEADER is 12 lines; line 13: 'XIC(a)MOV(?,x);' - the '?' is column 11
     _, diags = _check(st, FIXTURES["E128"][0])

@@ -173,6 +173,23 @@ def test_real_division_and_mod(st) -> None:
     assert t["third"] == 0.3333333432674408
 
 
+def test_real_mod_of_infinity_and_nan(st) -> None:
+    # TRUNC(inf / 2.0) has no integer value: this raised OverflowError (a traceback, found by
+    # fuzzing). IEEE fmod of an infinite or NaN dividend is NaN; a finite one MOD inf keeps a.
+    src = """
+    VAR big : REAL := 3.0e38; inf, nan, m1, m2, m3 : REAL; END_VAR
+    inf := big * 10.0;
+    nan := inf - inf;
+    m1 := inf MOD 2.0;
+    m2 := nan MOD 2.0;
+    m3 := 7.5 MOD inf;
+    """
+    t = st.tags(src, "inf", "m1", "m2", "m3")
+    assert t["inf"] == math.inf  # 3e38 x 10 = 3e39 is above the REAL range (3.4e38)
+    assert math.isnan(t["m1"]) and math.isnan(t["m2"])
+    assert t["m3"] == 7.5  # IEEE fmod(7.5, inf) = 7.5 (the quotient truncates to 0)
+
+
 def test_mixed_promotion(st) -> None:
     src = """
     VAR d : DINT := 7; r : REAL; q : DINT; s : SINT := 100; i : DINT; half : REAL := 0.5; END_VAR

@@ -6,6 +6,8 @@ import json
 import math
 import time
 
+import pytest
+
 
 def test_subscript_out_of_range_faults(st) -> None:
     src = """
@@ -80,6 +82,22 @@ def test_endless_loop_default_budget(st) -> None:
     assert r.code == 3
     assert (r.json["faults"][0]["type"], r.json["faults"][0]["code"]) == (6, 1)
     assert 1_000_000 < r.json["tags"]["n"] <= 5_000_000  # default budget 5,000,000 statements
+
+
+@pytest.mark.parametrize(("loop", "column"), [
+    ("WHILE TRUE DO\nEND_WHILE;", 1),
+    ("REPEAT ; UNTIL FALSE END_REPEAT;", 1),
+    ("n := 0; FOR i := 0 TO 2147483646 DO END_FOR;", 9),  # the FOR starts after "n := 0; "
+])
+def test_loop_without_statements_trips_the_watchdog(st, loop: str, column: int) -> None:
+    # An empty body used to count nothing, so the scan never ended (a hang, found by fuzzing).
+    # Each iteration now counts one; with a budget of 1000 the 1001st faults, located at the loop.
+    src = "VAR i, n : DINT; END_VAR\n" + loop + "\n"
+    r = st.run(src, "n", scans=3, args=("--watchdog", "1000"))
+    assert r.code == 3
+    (f,) = r.json["faults"]
+    assert (f["type"], f["code"], f["major"], f["line"], f["column"]) == (6, 1, True, 2, column)
+    assert r.json["scans"] == 1
 
 
 def test_watchdog_not_tripped_by_bounded_loop(st) -> None:
