@@ -16,52 +16,44 @@ from interpreter.runtime.loader import load
 # a BOOL. Program PC: no tag of its own, so X is the controller's DINT and Loc is undefined.
 # AOI Bump: its local X is a REAL and controller tags are not visible inside it; AOI Bump2:
 # its local X is a BOOL.
-HEAD = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
+AOI = """<AddOnInstructionDefinition Name="{name}" Revision="1.0">
+<Parameters>
+<Parameter Name="EnableIn" TagType="Base" DataType="BOOL" Usage="Input" Required="false" Visible="false"/>
+<Parameter Name="EnableOut" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="false"/>
+<Parameter Name="Flag" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="true"/>
+</Parameters>
+<LocalTags>
+<LocalTag Name="X" DataType="{local}"/>
+</LocalTags>
+<Routines>
+<Routine Name="Logic" Type="RLL">
+<RLLContent>
+{rungs}</RLLContent>
+</Routine>
+</Routines>
+</AddOnInstructionDefinition>
+"""
+RUNGS = [
+    '<Rung Number="0" Type="N"><Text><![CDATA[XIC(X)OTE(Flag);]]></Text></Rung>\n',
+    '<Rung Number="1" Type="N"><Text><![CDATA[XIC(Only)OTE(Flag);]]></Text></Rung>\n',
+]
+
+HEAD = (
+    """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
 <RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="33.01" TargetName="Scopes" TargetType="Controller">
 <Controller Use="Target" Name="Scopes" ProcessorType="1756-L83E" MajorRev="33" MinorRev="11">
 <AddOnInstructionDefinitions>
-<AddOnInstructionDefinition Name="Bump" Revision="1.0">
-<Parameters>
-<Parameter Name="EnableIn" TagType="Base" DataType="BOOL" Usage="Input" Required="false" Visible="false"/>
-<Parameter Name="EnableOut" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="false"/>
-<Parameter Name="Flag" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="true"/>
-</Parameters>
-<LocalTags>
-<LocalTag Name="X" DataType="REAL"/>
-</LocalTags>
-<Routines>
-<Routine Name="Logic" Type="RLL">
-<RLLContent>
-<Rung Number="0" Type="N"><Text><![CDATA[XIC(X)OTE(Flag);]]></Text></Rung>
-<Rung Number="1" Type="N"><Text><![CDATA[XIC(Only)OTE(Flag);]]></Text></Rung>
-</RLLContent>
-</Routine>
-</Routines>
-</AddOnInstructionDefinition>
-<AddOnInstructionDefinition Name="Bump2" Revision="1.0">
-<Parameters>
-<Parameter Name="EnableIn" TagType="Base" DataType="BOOL" Usage="Input" Required="false" Visible="false"/>
-<Parameter Name="EnableOut" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="false"/>
-<Parameter Name="Flag" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="true"/>
-</Parameters>
-<LocalTags>
-<LocalTag Name="X" DataType="BOOL"/>
-</LocalTags>
-<Routines>
-<Routine Name="Logic" Type="RLL">
-<RLLContent>
-<Rung Number="0" Type="N"><Text><![CDATA[XIC(X)OTE(Flag);]]></Text></Rung>
-</RLLContent>
-</Routine>
-</Routines>
-</AddOnInstructionDefinition>
-</AddOnInstructionDefinitions>
+"""
+    + AOI.format(name="Bump", local="REAL", rungs=RUNGS[0] + RUNGS[1])
+    + AOI.format(name="Bump2", local="BOOL", rungs=RUNGS[0])
+    + """</AddOnInstructionDefinitions>
 <Tags>
 <Tag Name="X" TagType="Base" DataType="DINT"/>
 <Tag Name="Only" TagType="Base" DataType="BOOL"/>
 </Tags>
 <Programs>
 """
+)
 
 PROGRAM = """<Program Name="{name}" MainRoutineName="Main">
 <Tags>{tags}</Tags>
