@@ -1,12 +1,13 @@
-"""Fast path for ordinary rungs: instructions, branches and plain operands, without the LALR parser.
+"""Fast path for ordinary rungs: instructions, branches and their operands, without the LALR parser.
 
-Most rungs of an export are contacts, coils, timers, moves and compares whose operands are
-tag references (`Tank[3].Level`, `Motor.Run`, `Flags.5`), numbers, `?` or empty. For those
-this recursive scanner builds exactly the AST that rll.lark and RllBuilder build (same nodes,
-same spans) at a fraction of the cost. Anything else (an expression operand of CMP/CPT, a
-string, enumeration text, a qualified name, an L5K `N:`/`RC:` line, any syntax error) makes
-it give up with None, and the grammar parses the rung: rll.lark stays the definition of the
-language, and tests/language/test_rung_scan.py checks both paths agree (decision 0012).
+Most rungs of an export are contacts, coils, timers, moves, compares and computes whose
+operands are tag references (`Tank[3].Level`, `Motor.Run`, `Flags.5`), numbers, `?`, empty
+slots or arithmetic over those. For them this recursive scanner builds exactly the AST that
+rll.lark and RllBuilder build (same nodes, same spans) at a fraction of the cost. Anything
+else (a string, enumeration text, a qualified name, an L5K `N:`/`RC:` line, any syntax
+error) makes it give up with None, and the grammar parses the rung: rll.lark stays the
+definition of the language, and tests/ladder/test_rung_scan.py checks both paths agree
+(decision 0012).
 """
 
 from __future__ import annotations
@@ -134,12 +135,12 @@ class _Scanner:
         before = m.end() - 1  # the separator in front of the current slot: '(' then each ','
         self.i = m.end()
         operands: list[n.Expr] = []
-        empty: list[int] = []  # indices of empty slots, with the separators around them
+        empty = False  # met an empty slot (its placeholder spans the separators around it)
         while True:
             ch = self.skip()
             if ch in ",)" and ch:
                 operands.append(n.Placeholder(self.span(before, self.i + 1)))
-                empty.append(len(operands) - 1)
+                empty = True
             else:
                 operands.append(self.operand(ch))
                 ch = self.skip()
