@@ -185,7 +185,7 @@ class _Scanner:
                 return left
             self.i = m.end()
             right = self.expr(prec + 1)
-            left = n.Binary("AND" if op == "&" else op, left, right, _join(left.span, right.span))
+            left = n.Binary("AND" if op == "&" else op, left, right, left.span.to(right.span))
 
     def not_expr(self) -> n.Expr:
         self.skip()
@@ -195,7 +195,7 @@ class _Scanner:
             return self.neg_expr()
         self.i = m.end()
         operand = self.not_expr()
-        return n.Unary("NOT", operand, _join(self.span(start, start), operand.span))
+        return n.Unary("NOT", operand, self.span(start, start).to(operand.span))
 
     def neg_expr(self) -> n.Expr:
         ch = self.skip()
@@ -203,7 +203,7 @@ class _Scanner:
             start = self.i
             self.i += 1
             operand = self.neg_expr()
-            return n.Unary("-", operand, _join(self.span(start, start), operand.span))
+            return n.Unary("-", operand, self.span(start, start).to(operand.span))
         if ch == "+":  # unary plus: the operand itself, as the grammar's unary_plus
             self.i += 1
             return self.neg_expr()
@@ -218,10 +218,10 @@ class _Scanner:
                 self.i += 1
                 self.skip()
                 operand = self.primary()
-                right: n.Expr = n.Unary("-", operand, _join(self.span(start, start), operand.span))
+                right: n.Expr = n.Unary("-", operand, self.span(start, start).to(operand.span))
             else:
                 right = self.primary()
-            left = n.Binary("**", left, right, _join(left.span, right.span))
+            left = n.Binary("**", left, right, left.span.to(right.span))
 
     def primary(self) -> n.Expr:
         ch = self.skip()
@@ -311,10 +311,6 @@ class _Scanner:
         self.i += 1
         end = args[-1].span if args else name.span
         return n.Call(name.ident, args, name.span.to(end), name.span)
-
-
-def _join(first: n.Span, last: n.Span) -> n.Span:
-    return n.Span(first.line, first.col, last.end_line, last.end_col)
 
 
 def scan_rung(text: str, line: int, col: int, plain_name: re.Pattern[str]) -> n.Rung | None:
