@@ -157,7 +157,6 @@ class _Val:
     expr: str
     type: DataType | None
     chain: str = ""  # "and"/"or": expr is one flat parenthesised chain of that operator (LAND/LOR)
-    depth: int = 0  # parentheses nesting added by LAND/LOR (kept below Python's parser limit)
 
 
 @dataclass(slots=True)
@@ -288,8 +287,8 @@ class Translator:
             self.op(ins)
             top = self.stack[-1] if self.stack else None
             if isinstance(top, _Val) and len(top.expr) > _LONG and _nesting(top.expr) > _MAX_DEPTH:
-                # a long expression (`a + b + ... + z`, deeply nested calls): Python's parser
-                # refuses about 200 nested parentheses, so evaluate the part so far now
+                # a long expression (`a + b + ... + z`, a rung of nested branches): Python's
+                # parser refuses about 200 nested parentheses, so evaluate the part so far now
                 t = self.fresh()
                 self.line(f"{t} = {top.expr}")
                 self.stack[-1] = _Val(t, top.type)
@@ -467,12 +466,7 @@ class Translator:
             st.pop()
         elif op is Op.LAND or op is Op.LOR:
             b, a = self.pop_val(), self.pop_val()
-            v = _rung_logic(a, b, "and" if op is Op.LAND else "or")
-            if v.depth > _MAX_DEPTH:  # a very long or deep rung: evaluate the part so far now
-                t = self.fresh()
-                self.line(f"{t} = {v.expr}")
-                v = _Val(t, BOOL)
-            st.append(v)
+            st.append(_rung_logic(a, b, "and" if op is Op.LAND else "or"))  # translate() bounds its depth
         elif op is Op.RCALL:
             key, count = arg
             args = [self.pop_val().expr for _ in range(count)][::-1]
@@ -607,8 +601,8 @@ def _rung_logic(a: _Val, b: _Val, word: str) -> _Val:
     if b.expr in neutral or a.expr in absorbing:
         return a  # b is pure: not evaluating it changes nothing
     if a.chain == word:  # (x and y) and b -> (x and y and b)
-        return _Val(f"{a.expr[:-1]} {word} {b.expr})", BOOL, word, max(a.depth, b.depth + 1))
-    return _Val(f"({a.expr} {word} {b.expr})", BOOL, word, max(a.depth, b.depth) + 1)
+        return _Val(f"{a.expr[:-1]} {word} {b.expr})", BOOL, word)
+    return _Val(f"({a.expr} {word} {b.expr})", BOOL, word)
 
 
 def _result_src(t: DataType) -> DataType:
