@@ -37,7 +37,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="logixst", description="Run and verify Logix 5000 Structured Text off the controller.")
+    p = _Parser(
+        prog="logixst", description="Run and verify Logix 5000 Structured Text off the controller."
+    )
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="run a program on simulated time")
     run.add_argument("programs", nargs="+", type=Path, metavar="PROGRAM")
@@ -49,14 +51,29 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--set", action="append", default=[], metavar="TAG=VALUE")
     run.add_argument("--watch", action="append", default=[], metavar="EXPR")
     run.add_argument("--trace", type=Path, metavar="FILE.csv")
-    run.add_argument("--plot", type=Path, metavar="FILE.png", help="draw the traced signals (needs the plot extra)")
+    run.add_argument(
+        "--plot",
+        type=Path,
+        metavar="FILE.png",
+        help="draw the traced signals (needs the plot extra)",
+    )
     run.add_argument("--json", action="store_true")
     run.add_argument("--watchdog", type=int, default=DEFAULT_WATCHDOG, metavar="N")
-    run.add_argument("--tags", type=Path, metavar="FILE.L5X", help="controller tags and data types for .st/.rll files")
+    run.add_argument(
+        "--tags",
+        type=Path,
+        metavar="FILE.L5X",
+        help="controller tags and data types for .st/.rll files",
+    )
     check = sub.add_parser("check", help="verify without running")
     check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
     check.add_argument("--format", choices=["text", "json", "github", "sarif"], default="text")
-    check.add_argument("--tags", type=Path, metavar="FILE.L5X", help="controller tags and data types for .st/.rll files")
+    check.add_argument(
+        "--tags",
+        type=Path,
+        metavar="FILE.L5X",
+        help="controller tags and data types for .st/.rll files",
+    )
     return p
 
 
@@ -75,8 +92,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         return 130
     except RecursionError:  # beyond even _with_deep_stack's limit: refuse, never a traceback
-        print("logixst: error: the program nests expressions, statements or branches too deeply to analyse",
-              file=sys.stderr)
+        print(
+            "logixst: error: the program nests expressions, statements or branches too deeply to analyse",
+            file=sys.stderr,
+        )
         return EXIT_USAGE
 
 
@@ -99,10 +118,21 @@ def parse_set_value(text: str, target: DataType | None = None) -> object:
         value, _ = parse_number(digits)
     except ValueError:
         raise UsageError(f"--set: '{text}' is not an ST literal") from None
-    if "#" in digits and isinstance(target, Elementary) and target.is_integer and isinstance(value, int):
-        pattern = int(digits.replace("_", "").split("#", 1)[1].rstrip("uUlL"), int(digits.split("#", 1)[0]))
+    if (
+        "#" in digits
+        and isinstance(target, Elementary)
+        and target.is_integer
+        and isinstance(value, int)
+    ):
+        pattern = int(
+            digits.replace("_", "").split("#", 1)[1].rstrip("uUlL"), int(digits.split("#", 1)[0])
+        )
         if pattern < 1 << target.bits:
-            value = pattern - (1 << target.bits) if target.signed and pattern >= 1 << (target.bits - 1) else pattern
+            value = (
+                pattern - (1 << target.bits)
+                if target.signed and pattern >= 1 << (target.bits - 1)
+                else pattern
+            )
     return -value if neg else value
 
 
@@ -131,12 +161,25 @@ def cmd_run(args: argparse.Namespace) -> int:
     if has_errors(loaded.diagnostics):
         _print_diags(loaded.diagnostics)
         if args.json:
-            print(json.dumps({"time": 0.0, "scans": 0, "tags": {}, "faults": [],
-                              "diagnostics": [d.to_json() for d in loaded.diagnostics]}))
+            print(
+                json.dumps(
+                    {
+                        "time": 0.0,
+                        "scans": 0,
+                        "tags": {},
+                        "faults": [],
+                        "diagnostics": [d.to_json() for d in loaded.diagnostics],
+                    }
+                )
+            )
         return EXIT_VERIFY
     _print_diags(loaded.diagnostics)  # warnings only
-    ctl = Controller(loaded, scan_period_ms=args.scan_period, watchdog=args.watchdog,
-                     coarse_update_ms=args.coarse_update)
+    ctl = Controller(
+        loaded,
+        scan_period_ms=args.scan_period,
+        watchdog=args.watchdog,
+        coarse_update_ms=args.coarse_update,
+    )
     watches = _watches(ctl, args.watch)
     for item in args.set:
         name, sep, value = item.partition("=")
@@ -154,7 +197,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     for k in range(scans if ok else 0):
         ok = ctl.scan()
         if record:
-            trace_rows.append([k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches])
+            trace_rows.append(
+                [k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches]
+            )
         if not ok:
             break
         progress.update(k + 1)
@@ -167,9 +212,17 @@ def cmd_run(args: argparse.Namespace) -> int:
     tags = {w: to_json_value(g(), t) for w, g, t in watches}
     sim_time = ctl.scans * args.scan_period / 1000.0
     if args.json:
-        print(json.dumps({"time": sim_time, "scans": ctl.scans, "tags": tags,
-                          "faults": [f.to_json() for f in faults],
-                          "diagnostics": [d.to_json() for d in loaded.diagnostics]}))
+        print(
+            json.dumps(
+                {
+                    "time": sim_time,
+                    "scans": ctl.scans,
+                    "tags": tags,
+                    "faults": [f.to_json() for f in faults],
+                    "diagnostics": [d.to_json() for d in loaded.diagnostics],
+                }
+            )
+        )
     else:
         _print_table(tags)
         for f in faults:
@@ -182,7 +235,9 @@ def _scan_count(duration: float | None, scan_period_ms: float) -> int:
     seconds = 1.0 if duration is None else duration
     total = seconds * 1000.0 / scan_period_ms
     if not math.isfinite(total):
-        raise UsageError(f"--duration {seconds:g} s at a {scan_period_ms:g} ms scan period is too many scans to count")
+        raise UsageError(
+            f"--duration {seconds:g} s at a {scan_period_ms:g} ms scan period is too many scans to count"
+        )
     return round(total)
 
 
@@ -222,16 +277,25 @@ def _write_trace(path: Path, names: list[str], rows: list[list[object]]) -> None
         raise InputError(f"{path}: cannot write trace: {exc.strerror}") from exc
 
 
-def _write_plot(path: Path, ctl: Controller, programs: list[Path],
-                watches: list[tuple[str, Callable[[], object], DataType]], rows: list[list[object]]) -> None:
+def _write_plot(
+    path: Path,
+    ctl: Controller,
+    programs: list[Path],
+    watches: list[tuple[str, Callable[[], object], DataType]],
+    rows: list[list[object]],
+) -> None:
     series = []
     for j, (name, _, t) in enumerate(watches, start=1):
         if not isinstance(t, Elementary):
             continue  # structures and strings are not drawn
         kind = "bool" if t.is_bool else "int" if t.is_integer else "real"
         series.append(Series(name, [float(r[j]) for r in rows], kind))  # type: ignore[arg-type]
-    data = PlotData(", ".join(p.name for p in programs), [float(r[0]) for r in rows], series,  # type: ignore[arg-type]
-                    _coordinate_paths(ctl, [w for w, _, _ in watches]))
+    data = PlotData(
+        ", ".join(p.name for p in programs),
+        [float(r[0]) for r in rows],
+        series,  # type: ignore[arg-type]
+        _coordinate_paths(ctl, [w for w, _, _ in watches]),
+    )
     try:
         write_plot(path, data)
     except OSError as exc:
@@ -285,7 +349,12 @@ class _Progress:
         self.last, self.shown = now, True
         frac = done / max(1, self.total)
         bar = "#" * int(frac * 30)
-        print(f"\r[{bar:<30}] {frac:6.1%} scan {done}/{self.total}", end="", file=sys.stderr, flush=True)
+        print(
+            f"\r[{bar:<30}] {frac:6.1%} scan {done}/{self.total}",
+            end="",
+            file=sys.stderr,
+            flush=True,
+        )
 
     def done(self) -> None:
         if self.shown:
@@ -323,9 +392,17 @@ def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
         print(json.dumps([d.to_json() for d in diags], indent=2))
     elif fmt == "github":
         for d in diags:
-            kind = "error" if d.severity is Severity.ERROR else "warning" if d.severity is Severity.WARNING else "notice"
-            print(f"::{kind} file={d.path},line={d.span.line},col={d.span.col},endLine={d.span.end_line},"
-                  f"endColumn={d.span.end_col},title={d.code}::{d.message}")
+            kind = (
+                "error"
+                if d.severity is Severity.ERROR
+                else "warning"
+                if d.severity is Severity.WARNING
+                else "notice"
+            )
+            print(
+                f"::{kind} file={d.path},line={d.span.line},col={d.span.col},endLine={d.span.end_line},"
+                f"endColumn={d.span.end_col},title={d.code}::{d.message}"
+            )
     elif fmt == "sarif":
         print(json.dumps(_sarif(diags), indent=2))
     else:
@@ -343,21 +420,40 @@ def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
     return {
         "version": "2.1.0",
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
-        "runs": [{
-            "tool": {"driver": {"name": "logixst", "rules": [
-                {"id": c.code, "shortDescription": {"text": c.title}} for c in REGISTRY.values()
-            ]}},
-            "results": [{
-                "ruleId": d.code,
-                "level": level[d.severity],
-                "message": {"text": d.message},
-                "locations": [{"physicalLocation": {
-                    "artifactLocation": {"uri": d.path},
-                    "region": {"startLine": d.span.line, "startColumn": d.span.col,
-                               "endLine": d.span.end_line, "endColumn": d.span.end_col},
-                }}],
-            } for d in diags],
-        }],
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "logixst",
+                        "rules": [
+                            {"id": c.code, "shortDescription": {"text": c.title}}
+                            for c in REGISTRY.values()
+                        ],
+                    }
+                },
+                "results": [
+                    {
+                        "ruleId": d.code,
+                        "level": level[d.severity],
+                        "message": {"text": d.message},
+                        "locations": [
+                            {
+                                "physicalLocation": {
+                                    "artifactLocation": {"uri": d.path},
+                                    "region": {
+                                        "startLine": d.span.line,
+                                        "startColumn": d.span.col,
+                                        "endLine": d.span.end_line,
+                                        "endColumn": d.span.end_col,
+                                    },
+                                }
+                            }
+                        ],
+                    }
+                    for d in diags
+                ],
+            }
+        ],
     }
 
 

@@ -81,9 +81,7 @@ _TABLE: list[tuple[str, str]] = [
 
 _SEVERITY = {"S": Severity.ERROR, "E": Severity.ERROR, "W": Severity.WARNING, "U": Severity.ERROR}
 
-REGISTRY: dict[str, Code] = {
-    code: Code(code, _SEVERITY[code[0]], title) for code, title in _TABLE
-}
+REGISTRY: dict[str, Code] = {code: Code(code, _SEVERITY[code[0]], title) for code, title in _TABLE}
 
 
 @dataclass(frozen=True, slots=True)

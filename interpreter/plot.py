@@ -20,7 +20,14 @@ _UNITS: tuple[tuple[str, str], ...] = (
     ("VELOCITY", "velocity [units/s]"),
     ("ACCELERATION", "acceleration [units/s²]"),
 )
-_ORDER = ["position [units]", "velocity [units/s]", "acceleration [units/s²]", "values", "integers", "bits"]
+_ORDER = [
+    "position [units]",
+    "velocity [units/s]",
+    "acceleration [units/s²]",
+    "values",
+    "integers",
+    "bits",
+]
 
 
 @dataclass(slots=True)
@@ -72,13 +79,24 @@ def write_plot(path: Path, data: PlotData) -> None:
         groups.setdefault(unit_of(s.name, s.kind), []).append(s)
     units = [u for u in _ORDER if u in groups]
     by_name = {s.name: s for s in data.series}
-    paths = [(n, [by_name[e] for e in exprs]) for n, exprs in data.paths if all(e in by_name for e in exprs)]
+    paths = [
+        (n, [by_name[e] for e in exprs])
+        for n, exprs in data.paths
+        if all(e in by_name for e in exprs)
+    ]
     rows = len(units) + (1 if paths else 0)
     if rows == 0:
         rows, units = 1, []
-    heights = [2.2 if u != "bits" else 0.5 + 0.35 * len(groups[u]) for u in units] + ([4.0] if paths else [])
-    fig, axes = plt.subplots(rows, 1, figsize=(10, max(3.0, sum(heights) + 1.0)),
-                             gridspec_kw={"height_ratios": heights or [1]}, squeeze=False)
+    heights = [2.2 if u != "bits" else 0.5 + 0.35 * len(groups[u]) for u in units] + (
+        [4.0] if paths else []
+    )
+    fig, axes = plt.subplots(
+        rows,
+        1,
+        figsize=(10, max(3.0, sum(heights) + 1.0)),
+        gridspec_kw={"height_ratios": heights or [1]},
+        squeeze=False,
+    )
     t = data.times
     time_axes = []
     for ax, unit in zip(axes[:, 0], units, strict=False):
@@ -87,7 +105,13 @@ def write_plot(path: Path, data: PlotData) -> None:
             _bits(ax, t, groups[unit])
         else:
             for s in groups[unit]:
-                ax.plot(t, s.values, label=s.name, linewidth=1.2, drawstyle="steps-post" if s.kind == "int" else "default")
+                ax.plot(
+                    t,
+                    s.values,
+                    label=s.name,
+                    linewidth=1.2,
+                    drawstyle="steps-post" if s.kind == "int" else "default",
+                )
             ax.set_ylabel(unit)
             ax.legend(loc="best", fontsize="small")
         ax.grid(True, alpha=0.3)

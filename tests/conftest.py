@@ -53,7 +53,14 @@ class Runner:
         cap = self.capsys.readouterr()
         return Result(code, cap.out, cap.err)
 
-    def run(self, src: str, *watch: str, scans: int = 1, args: tuple[str, ...] = (), name: str = "main.st") -> Result:
+    def run(
+        self,
+        src: str,
+        *watch: str,
+        scans: int = 1,
+        args: tuple[str, ...] = (),
+        name: str = "main.st",
+    ) -> Result:
         """Run `src` for `scans` scans with `--json`, watching `watch`."""
         p = self.write(name, src)
         argv = ["run", str(p), "--scans", str(scans), "--json", *args]
@@ -61,7 +68,9 @@ class Runner:
             argv += ["--watch", w]
         return self.cli(*argv)
 
-    def tags(self, src: str, *watch: str, scans: int = 1, args: tuple[str, ...] = ()) -> dict[str, Any]:
+    def tags(
+        self, src: str, *watch: str, scans: int = 1, args: tuple[str, ...] = ()
+    ) -> dict[str, Any]:
         """Run and return the watched tag values; the run must succeed (exit 0)."""
         r = self.run(src, *watch, scans=scans, args=args)
         assert r.code == 0, (r.code, r.err, r.out)
@@ -75,5 +84,3 @@ class Runner:
 @pytest.fixture
 def st(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Runner:
     return Runner(tmp_path, capsys)
-
-

@@ -40,8 +40,31 @@ def test_every_type_and_enum_is_documented() -> None:
 # Lowered by the compilers to inline bytecode rather than dispatched to an implementation
 # (ladder contacts, coils, compares, moves, expressions, file loops and program control).
 INTRINSICS = {
-    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
-    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
+    "XIC",
+    "XIO",
+    "OTE",
+    "OTL",
+    "OTU",
+    "EQU",
+    "NEQ",
+    "GRT",
+    "GEQ",
+    "LES",
+    "LEQ",
+    "MOV",
+    "JMP",
+    "LBL",
+    "MCR",
+    "AFI",
+    "NOP",
+    "TND",
+    "JSR",
+    "SBR",
+    "RET",
+    "CPT",
+    "CMP",
+    "FAL",
+    "FSC",
 }
 
 
@@ -56,7 +79,9 @@ def test_intrinsics_are_the_compiler_lowered_set_and_have_no_implementation() ->
 
 
 @pytest.mark.parametrize(
-    "ins", [i for i in catalog().instructions if not _pending(i) and i.name not in INTRINSICS], ids=lambda i: i.key
+    "ins",
+    [i for i in catalog().instructions if not _pending(i) and i.name not in INTRINSICS],
+    ids=lambda i: i.key,
 )
 def test_instruction_is_implemented(ins) -> None:  # type: ignore[no-untyped-def]
     for lang in sorted(ins.languages):
@@ -67,13 +92,17 @@ def test_pending_instruction_is_reported_not_run(tmp_path) -> None:  # type: ign
     from interpreter.runtime.loader import load
 
     src = tmp_path / "p.st"
-    src.write_text("VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nIF 1 THEN MDOC(ax, 0, c, All); END_IF;\n")
+    src.write_text(
+        "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nIF 1 THEN MDOC(ax, 0, c, All); END_IF;\n"
+    )
     codes = [d.code for d in load([src]).diagnostics]
     if lookup("MDOC", "st") is None:
         assert codes == ["U304"]
     else:
         assert "U304" not in codes
-    src.write_text("VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nIF 1 THEN MSO(ax, c); END_IF;\n")
+    src.write_text(
+        "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nIF 1 THEN MSO(ax, c); END_IF;\n"
+    )
     assert [d.code for d in load([src]).diagnostics] == []  # MSO runs since issue 4
 
 
@@ -97,10 +126,14 @@ def test_implementation_index_is_what_the_modules_register() -> None:
     from interpreter.instructions.implemented import IMPLEMENTED
 
     registry.load_all()
-    assert IMPLEMENTED == frozenset(registry.IMPLEMENTATIONS), "implemented.py is stale: run registry.write_index()"
+    assert IMPLEMENTED == frozenset(registry.IMPLEMENTATIONS), (
+        "implemented.py is stale: run registry.write_index()"
+    )
     for ins in catalog().instructions:
         for lang in sorted(ins.languages):
-            assert registry.has_implementation(ins.name, lang) == (lookup(ins.name, lang) is not None), (ins.key, lang)
+            assert registry.has_implementation(ins.name, lang) == (
+                lookup(ins.name, lang) is not None
+            ), (ins.key, lang)
 
 
 def test_check_imports_no_implementation_module(tmp_path) -> None:  # type: ignore[no-untyped-def]
@@ -112,10 +145,21 @@ def test_check_imports_no_implementation_module(tmp_path) -> None:  # type: igno
     root = Path(__file__).resolve().parents[1]
     # a timer and a motion instruction (GSV/SSV would read ladder_system's attribute table: U303)
     src = tmp_path / "p.rll"
-    src.write_text("VAR t : TIMER; ax : AXIS_VIRTUAL; mc : MOTION_INSTRUCTION; END_VAR\nTON(t,100,0);\nXIC(t.DN)MSO(ax,mc);\n")
+    src.write_text(
+        "VAR t : TIMER; ax : AXIS_VIRTUAL; mc : MOTION_INSTRUCTION; END_VAR\nTON(t,100,0);\nXIC(t.DN)MSO(ax,mc);\n"
+    )
     probe = (
         "import sys\nfrom interpreter.cli import main\ncode = main(['check', sys.argv[1]])\n"
         "print(code, sorted(m for m in sys.modules if m.startswith('interpreter.instructions.') or m in ('numpy', 'interpreter.motion')))\n"
     )
-    done = subprocess.run([sys.executable, "-c", probe, str(src)], capture_output=True, text=True, cwd=root, check=False)
-    assert done.stdout.splitlines()[-1] == "0 ['interpreter.instructions.implemented', 'interpreter.instructions.registry']", done.stdout + done.stderr
+    done = subprocess.run(
+        [sys.executable, "-c", probe, str(src)],
+        capture_output=True,
+        text=True,
+        cwd=root,
+        check=False,
+    )
+    assert (
+        done.stdout.splitlines()[-1]
+        == "0 ['interpreter.instructions.implemented', 'interpreter.instructions.registry']"
+    ), done.stdout + done.stderr

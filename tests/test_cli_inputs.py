@@ -47,7 +47,10 @@ def assert_one_line_error(err: str, *fragments: str) -> None:
 def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [sys.executable, "-m", "interpreter.cli", *argv],
-        capture_output=True, text=True, timeout=120, cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=cwd,
     )
 
 
@@ -59,7 +62,9 @@ def test_missing_file(tmp_path: Path) -> None:
     assert r.stdout == ""
 
 
-def test_missing_file_with_other_suffix_is_reported_as_missing(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_missing_file_with_other_suffix_is_reported_as_missing(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     code, _, err = run_main(capsys, str(tmp_path / "nope.txt"))
     assert code == 2
     assert_one_line_error(err, "no such file")
@@ -99,7 +104,9 @@ def test_empty_file(capsys: pytest.CaptureFixture[str], tmp_path: Path, content:
     assert out == ""
 
 
-def test_invalid_utf8_in_a_comment_is_read_as_latin1(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_invalid_utf8_in_a_comment_is_read_as_latin1(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     # Exports from Windows tools often carry cp1252 bytes (degree sign, micro sign) in comments.
     p = tmp_path / "latin.st"
     p.write_bytes(b"VAR n : DINT; END_VAR\n// setpoint 20 \xb0C, \xb5m, \xff\xfe\nn := n + 1;\n")
@@ -109,7 +116,9 @@ def test_invalid_utf8_in_a_comment_is_read_as_latin1(capsys: pytest.CaptureFixtu
     assert out.split() == ["n", "2"]
 
 
-def test_invalid_utf8_in_code_is_a_syntax_diagnostic(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_invalid_utf8_in_code_is_a_syntax_diagnostic(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     p = tmp_path / "bad.st"
     p.write_bytes(b"VAR n : DINT; END_VAR\nn := n \xff 1;\n")
     code, out, err = run_main(capsys, str(p))
@@ -162,7 +171,9 @@ def test_no_program_given(capsys: pytest.CaptureFixture[str]) -> None:
         (["--frobnicate"], "--frobnicate"),
     ],
 )
-def test_bad_flags(capsys: pytest.CaptureFixture[str], good: Path, flags: list[str], fragment: str) -> None:
+def test_bad_flags(
+    capsys: pytest.CaptureFixture[str], good: Path, flags: list[str], fragment: str
+) -> None:
     code, out, err = run_main(capsys, str(good), *flags)
     assert code == 2
     assert_one_line_error(err, fragment)
@@ -176,7 +187,16 @@ def test_unknown_watch_tag_through_the_real_entry_point(good: Path) -> None:
 
 
 def test_unwritable_trace(capsys: pytest.CaptureFixture[str], good: Path, tmp_path: Path) -> None:
-    code, _, err = run_main(capsys, str(good), "--scans", "1", "--watch", "n", "--trace", str(tmp_path / "no" / "dir" / "t.csv"))
+    code, _, err = run_main(
+        capsys,
+        str(good),
+        "--scans",
+        "1",
+        "--watch",
+        "n",
+        "--trace",
+        str(tmp_path / "no" / "dir" / "t.csv"),
+    )
     assert code == 2
     assert_one_line_error(err, "cannot write trace")
 

@@ -25,7 +25,7 @@ def sections() -> dict[str, str]:
     for i, m in enumerate(heads):
         end = heads[i + 1].start() if i + 1 < len(heads) else len(text)
         assert m.group(1) not in out, f"two sections for {m.group(1)}"
-        out[m.group(1)] = text[m.start():end]
+        out[m.group(1)] = text[m.start() : end]
     return out
 
 
@@ -41,7 +41,7 @@ def test_every_section_is_a_code() -> None:
 
 def test_section_titles_follow_the_registry() -> None:
     for code, body in sections().items():
-        title = body.splitlines()[0][len("## "):]
+        title = body.splitlines()[0][len("## ") :]
         assert title == f"{code} {REGISTRY[code].title}"
 
 
@@ -58,7 +58,9 @@ EXAMPLES = [
 ]
 
 
-@pytest.mark.parametrize(("code", "lang", "source"), EXAMPLES, ids=[f"{c}-{lang}" for c, lang, _ in EXAMPLES])
+@pytest.mark.parametrize(
+    ("code", "lang", "source"), EXAMPLES, ids=[f"{c}-{lang}" for c, lang, _ in EXAMPLES]
+)
 def test_example_produces_its_code(tmp_path: Path, code: str, lang: str, source: str) -> None:
     p = tmp_path / f"example.{lang}"
     p.write_text(source)

@@ -142,7 +142,13 @@ def _unlined_grammar(path: Path = GRAMMAR) -> str:
 
 @cache
 def _plain() -> Lark:
-    return Lark(_unlined_grammar(), parser="lalr", lexer="contextual", maybe_placeholders=True, start=["start", "expr"])
+    return Lark(
+        _unlined_grammar(),
+        parser="lalr",
+        lexer="contextual",
+        maybe_placeholders=True,
+        start=["start", "expr"],
+    )
 
 
 def _inlined_rules(path: Path = GRAMMAR) -> set[str]:
@@ -151,7 +157,11 @@ def _inlined_rules(path: Path = GRAMMAR) -> set[str]:
 
 def _grammar_names() -> set[str]:
     """Every rule (`name`) and aliased alternative (`rule__alias`) the grammar can produce."""
-    return {str(r.alias or r.origin.name) for r in _plain().rules if not str(r.origin.name).startswith("_")}
+    return {
+        str(r.alias or r.origin.name)
+        for r in _plain().rules
+        if not str(r.origin.name).startswith("_")
+    }
 
 
 def _tree_names(tree: Tree) -> Iterator[str]:
@@ -191,7 +201,9 @@ def test_every_rule_and_alias_is_handled_by_the_ast_builder() -> None:
             ok = rule in inlined or callable(getattr(AstBuilder, rule, None))
         if not ok:
             unhandled.append(name)
-    assert not unhandled, f"rules/aliases without an AstBuilder method (and not ?inlined): {unhandled}"
+    assert not unhandled, (
+        f"rules/aliases without an AstBuilder method (and not ?inlined): {unhandled}"
+    )
 
 
 def _no_lark_objects(value: object, where: str) -> None:
@@ -223,8 +235,12 @@ def test_expression_entry_point(text: str) -> None:
 
 def test_rewritten_grammar_has_the_same_rules() -> None:
     # The rewrite must only remove inlining and rename aliases, never drop a rule.
-    original = {m.group(1) for m in re.finditer(r"^[?!]?([a-z_][a-z0-9_]*)\s*:", GRAMMAR.read_text(), re.M)}
-    plain_rules = {str(r.origin.name) for r in _plain().rules if not str(r.origin.name).startswith("_")}
+    original = {
+        m.group(1) for m in re.finditer(r"^[?!]?([a-z_][a-z0-9_]*)\s*:", GRAMMAR.read_text(), re.M)
+    }
+    plain_rules = {
+        str(r.origin.name) for r in _plain().rules if not str(r.origin.name).startswith("_")
+    }
     assert plain_rules == original
 
 
@@ -250,8 +266,13 @@ RLL_RUNGS = ["XIC(a)OTE(b)", "[,XIC(a)]OTE(b);"]
 @cache
 def _rll_plain() -> Lark:
     return Lark(
-        _unlined_grammar(RLL_GRAMMAR), parser="lalr", lexer="contextual", maybe_placeholders=True,
-        start=["rung_line", "rung_only"], source_path=str(RLL_GRAMMAR), import_paths=[str(RLL_GRAMMAR.parent)],
+        _unlined_grammar(RLL_GRAMMAR),
+        parser="lalr",
+        lexer="contextual",
+        maybe_placeholders=True,
+        start=["rung_line", "rung_only"],
+        source_path=str(RLL_GRAMMAR),
+        import_paths=[str(RLL_GRAMMAR.parent)],
     )
 
 
@@ -301,5 +322,8 @@ def test_rll_corpus_parses_cleanly_into_a_pure_ast() -> None:
 
 def test_rll_imports_only_what_st_lark_defines() -> None:
     # the shared expression grammar must stay importable: each imported name exists in st.lark
-    defined = {m.group(1) for m in re.finditer(r"^\??([A-Za-z_][A-Za-z0-9_]*)(\.\d+)?\s*:", GRAMMAR.read_text(), re.M)}
+    defined = {
+        m.group(1)
+        for m in re.finditer(r"^\??([A-Za-z_][A-Za-z0-9_]*)(\.\d+)?\s*:", GRAMMAR.read_text(), re.M)
+    }
     assert _rll_imported() <= defined

@@ -24,6 +24,9 @@ def test_mypy_clean() -> None:
     pytest.importorskip("mypy", reason="mypy comes with the test extra")
     result = subprocess.run(
         [sys.executable, "-m", "mypy", "interpreter", "stdlib", "lsp"],
-        capture_output=True, text=True, check=False, cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=ROOT,
     )
     assert result.returncode == 0, result.stdout + result.stderr

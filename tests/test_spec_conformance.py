@@ -39,7 +39,14 @@ def test_program_wrapper_shorthand_arrays_and_multi_name_initialiser(st) -> None
     """
     t = st.tags(src, "a", "b", "iec[9]", "short[9]", "p", "t.PRE")
     # both names get TRUE; index 9 is the last of 10 in both forms; 3 * 2 = 6; y by member, x default 0
-    assert t == {"a": True, "b": True, "iec[9]": 3, "short[9]": 6, "p": {"x": 0, "y": 2.5}, "t.PRE": 500}
+    assert t == {
+        "a": True,
+        "b": True,
+        "iec[9]": 3,
+        "short[9]": 6,
+        "p": {"x": 0, "y": 2.5},
+        "t.PRE": 500,
+    }
 
 
 @pytest.mark.parametrize(("init", "given"), [("[1, 2]", 2), ("[1, 2, 3, 4]", 4)])
@@ -56,7 +63,9 @@ def test_unknown_member_in_initialiser_is_an_error(st) -> None:
     """SPEC 2.1: unknown members in an initialiser are verification errors."""
     r = st.check("VAR t : FBD_TIMER := (PRE := 5, Bogus := 1); END_VAR\nt.PRE := 1;\n")
     assert r.code == 1
-    assert [(d["code"], d["column"]) for d in r.json] == [("E118", 33)]  # `Bogus` starts in column 33
+    assert [(d["code"], d["column"]) for d in r.json] == [
+        ("E118", 33)
+    ]  # `Bogus` starts in column 33
 
 
 # ------------------------------------------------------------------ 2.2 .rll files / 9.18
@@ -84,10 +93,27 @@ def test_rll_forms_mix_and_empty_rung(st) -> None:
     r = st.cli("check", str(p), "--format", "json")
     assert r.code == 1
     # the only diagnostic is the empty rung: rung numbers count from 0, `;` is the 7th rung
-    assert [(d["code"], d["line"], d["column"], d["severity"]) for d in r.json] == [("E129", 12, 1, "error")]
+    assert [(d["code"], d["line"], d["column"], d["severity"]) for d in r.json] == [
+        ("E129", 12, 1, "error")
+    ]
     p.write_text(RLL_FORMS.replace("\n;\n", "\n"))
-    r = st.cli("run", str(p), "--scans", "3", "--json", "--watch", "o1", "--watch", "o2", "--watch", "n",
-               "--watch", "m", "--watch", "t.ACC")
+    r = st.cli(
+        "run",
+        str(p),
+        "--scans",
+        "3",
+        "--json",
+        "--watch",
+        "o1",
+        "--watch",
+        "o2",
+        "--watch",
+        "n",
+        "--watch",
+        "m",
+        "--watch",
+        "t.ACC",
+    )
     assert r.code == 0, r.err
     # a is TRUE: o1 on, o2 off; the branch XIC(b) OR XIO(b) is always true: n counts 3 scans;
     # GEQ(n, 2) is true from the second scan: m = 7; TON ACC: scans at 0, 1, 2 ms -> 2 ms
@@ -124,7 +150,11 @@ def test_l5x_rung_diagnostic_names_the_rung(st) -> None:
     r = st.cli("check", str(L5X / "rll_project.L5X"), "--format", "json")
     s006 = next(d for d in r.json if d["code"] == "S006")
     # rll_project.L5X: the third <Rung> (Number="2") has an unclosed branch
-    assert "rung 2" in s006["message"] and "routine" in s006["message"] and "program" in s006["message"]
+    assert (
+        "rung 2" in s006["message"]
+        and "routine" in s006["message"]
+        and "program" in s006["message"]
+    )
 
 
 # ------------------------------------------------------------------ 2.4 several files / 9.16
@@ -134,8 +164,21 @@ def test_several_files_one_program_jsr_by_name_and_unreached_routines(st) -> Non
     main = st.write("main.st", "VAR n, m, k : DINT; END_VAR\nn := n + 1;\nJSR(Sub);\n")
     sub = st.write("Sub.rll", "ADD(m, 10, m);\n")
     never = st.write("Never.st", "k := 99;\n")
-    r = st.cli("run", str(main), str(sub), str(never), "--scans", "3", "--json",
-               "--watch", "n", "--watch", "m", "--watch", "k")
+    r = st.cli(
+        "run",
+        str(main),
+        str(sub),
+        str(never),
+        "--scans",
+        "3",
+        "--json",
+        "--watch",
+        "n",
+        "--watch",
+        "m",
+        "--watch",
+        "k",
+    )
     assert r.code == 0, r.err
     # main runs 3 times (n = 3) and calls Sub each time (m = 3 x 10); Never is not reached
     assert r.tags == {"n": 3, "m": 30, "k": 0}
@@ -172,7 +215,9 @@ def test_first_scan_flag_only_in_the_first_normal_scan(st) -> None:
     """SPEC 4 / 9.17: `S:FS` is true in the first normal scan only, readable in ST and ladder."""
     st_src = "VAR n, first, seen : DINT; END_VAR\nn := n + 1;\nIF S:FS THEN first := n; seen := seen + 1; END_IF;\n"
     assert st.tags(st_src, "first", "seen", scans=4) == {"first": 1, "seen": 1}
-    r = st.run("VAR seen : DINT; END_VAR\nXIC(S:FS)ADD(seen, 1, seen);\n", "seen", scans=4, name="fs.rll")
+    r = st.run(
+        "VAR seen : DINT; END_VAR\nXIC(S:FS)ADD(seen, 1, seen);\n", "seen", scans=4, name="fs.rll"
+    )
     assert r.tags == {"seen": 1}
 
 
@@ -182,7 +227,9 @@ def test_math_status_flags_are_ladder_only(st) -> None:
     assert r.code == 1
     assert [(d["code"], d["line"], d["column"]) for d in r.json] == [("E123", 2, 6)]
     # ladder: SUB(0, 1, x) gives -1, so S:N is set after it on the same scan
-    r = st.run("VAR x : DINT; neg : BOOL; END_VAR\nSUB(0, 1, x);\nXIC(S:N)OTE(neg);\n", "neg", name="n.rll")
+    r = st.run(
+        "VAR x : DINT; neg : BOOL; END_VAR\nSUB(0, 1, x);\nXIC(S:N)OTE(neg);\n", "neg", name="n.rll"
+    )
     assert r.code == 0 and r.tags == {"neg": True}
 
 
@@ -214,9 +261,22 @@ def test_fault_entries_keys_minor_count_and_major_stop(st) -> None:
     path = str(st.tmp / "main.st")
     # scans 0, 1, 2 divide by zero (n = 1, 2, 3); in scan 2 (n = 3) a[3] is out of range
     assert {k: v for k, v in minor.items() if k != "message"} == {
-        "type": 4, "code": 4, "major": False, "file": path, "line": 3, "column": 6, "count": 3}
+        "type": 4,
+        "code": 4,
+        "major": False,
+        "file": path,
+        "line": 3,
+        "column": 6,
+        "count": 3,
+    }
     assert set(major) == {"type", "code", "major", "message", "file", "line", "column"}
-    assert (major["type"], major["code"], major["major"], major["line"], major["column"]) == (4, 20, True, 5, 3)
+    assert (major["type"], major["code"], major["major"], major["line"], major["column"]) == (
+        4,
+        20,
+        True,
+        5,
+        3,
+    )
     assert r.json["scans"] == 3 and r.tags == {"n": 3, "q": 7}  # integer / 0 keeps Source A
     r = st.cli("run", str(st.tmp / "main.st"), "--scans", "10")
     assert r.code == 3
@@ -228,14 +288,21 @@ def test_watch_forms_control_bit_array_element_and_bit(st) -> None:
     """SPEC 6: `--watch` takes `ctl.PC`, `arr[2]`, `d.5`, repeatable, keyed by the expression as given."""
     src = "VAR ctl : MOTION_INSTRUCTION; arr : DINT[3]; d : DINT := 37; END_VAR\narr[2] := d + 1;\n"
     # 37 = 2#100101: bit 5 is 1; arr[2] = 38; a fresh MOTION_INSTRUCTION has PC clear
-    assert st.tags(src, "ctl.PC", "arr[2]", "d.5", "d.4") == {"ctl.PC": False, "arr[2]": 38, "d.5": True, "d.4": False}
+    assert st.tags(src, "ctl.PC", "arr[2]", "d.5", "d.4") == {
+        "ctl.PC": False,
+        "arr[2]": 38,
+        "d.5": True,
+        "d.4": False,
+    }
 
 
 def test_json_value_kinds(st) -> None:
     """SPEC 6: BOOL as true/false, integers as ints, REAL as floats, STRING as text, a structure as an object."""
     src = "VAR b : BOOL; i : INT; r : REAL; s : STRING; t : TIMER; END_VAR\nb := TRUE; i := -3; r := 2; s := 'ok'; t.PRE := 4;\n"
     r = st.run(src, "b", "i", "r", "s", "t")
-    tags = json.loads(r.out, parse_int=lambda x: ("int", int(x)), parse_float=lambda x: ("float", float(x)))["tags"]
+    tags = json.loads(
+        r.out, parse_int=lambda x: ("int", int(x)), parse_float=lambda x: ("float", float(x))
+    )["tags"]
     assert tags["b"] is True
     assert tags["i"] == ("int", -3)
     assert tags["r"] == ("float", 2.0)
@@ -250,7 +317,9 @@ def _slow_progress(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(cli.time, "monotonic", lambda: float(next(ticks)))
 
 
-def test_progress_bar_on_a_terminal_but_never_with_json(st, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_progress_bar_on_a_terminal_but_never_with_json(
+    st, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """SPEC 6: a long run shows a progress bar on a terminal, never in --json output."""
     p = st.write("main.st", "VAR n : DINT; END_VAR\nn := n + 1;\n")
     _slow_progress(monkeypatch)
@@ -265,8 +334,14 @@ def test_no_progress_bar_when_not_a_terminal(tmp_path: Path) -> None:
     p = tmp_path / "main.st"
     p.write_text("VAR n : DINT; END_VAR\nn := n + 1;\n")
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
-    proc = subprocess.run([sys.executable, "-m", "interpreter.cli", "run", str(p), "--scans", "3000", "--watch", "n"],
-                          capture_output=True, text=True, env=env, timeout=120, check=False)
+    proc = subprocess.run(
+        [sys.executable, "-m", "interpreter.cli", "run", str(p), "--scans", "3000", "--watch", "n"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+        check=False,
+    )
     assert proc.returncode == 0
     assert proc.stderr == ""
     assert proc.stdout.split() == ["n", "3000"]
@@ -278,8 +353,18 @@ def test_check_json_columns_are_one_based_end_exclusive(st) -> None:
     r = st.check("VAR x : DINT; END_VAR\nx := yy + 1;\n")
     assert r.code == 1
     # `yy` occupies columns 6 and 7 of line 2: column 6, endColumn 8 (one past the last)
-    assert r.json == [{"path": str(st.tmp / "main.st"), "line": 2, "column": 6, "endLine": 2, "endColumn": 8,
-                       "severity": "error", "code": "E101", "message": r.json[0]["message"]}]
+    assert r.json == [
+        {
+            "path": str(st.tmp / "main.st"),
+            "line": 2,
+            "column": 6,
+            "endLine": 2,
+            "endColumn": 8,
+            "severity": "error",
+            "code": "E101",
+            "message": r.json[0]["message"],
+        }
+    ]
     assert "yy" in r.json[0]["message"]
 
 
@@ -371,7 +456,9 @@ def test_missing_end_if_position_and_message(st) -> None:
     assert (d["code"], d["line"], d["column"]) == ("S002", 4, 8)
     assert d["message"] == "missing END_IF for IF at line 2"
     # inside an enclosing block, at the token where the closer was expected
-    r = st.check("VAR x : DINT; END_VAR\nWHILE x > 0 DO\n  IF x > 1 THEN\n    x := 1;\nEND_WHILE;\n")
+    r = st.check(
+        "VAR x : DINT; END_VAR\nWHILE x > 0 DO\n  IF x > 1 THEN\n    x := 1;\nEND_WHILE;\n"
+    )
     (d,) = r.json
     assert (d["code"], d["line"], d["column"]) == ("S002", 5, 1)
     assert d["message"] == "missing END_IF for IF at line 3"
@@ -391,11 +478,36 @@ def test_set_literals_radix_suffix_real_bool_and_string(st) -> None:
     """SPEC 9.12: `--set TAG=VALUE` takes an ST literal; radix literals are bit patterns of the
     tag's type (decision 0080); strings with `$` escapes set STRING tags."""
     src = "VAR u : UDINT; s : SINT; d : DINT; l : LINT; r : REAL; b, c : BOOL; txt : STRING; END_VAR\n"
-    args = ("--set", "u=16#FFFF_FFFF", "--set", "s=16#FF", "--set", "d=2#1010", "--set", "l=5L",
-            "--set", "r=1.5e3", "--set", "b=TRUE", "--set", "c=1", "--set", "txt='it$'s $41$N'")
+    args = (
+        "--set",
+        "u=16#FFFF_FFFF",
+        "--set",
+        "s=16#FF",
+        "--set",
+        "d=2#1010",
+        "--set",
+        "l=5L",
+        "--set",
+        "r=1.5e3",
+        "--set",
+        "b=TRUE",
+        "--set",
+        "c=1",
+        "--set",
+        "txt='it$'s $41$N'",
+    )
     t = st.tags(src, "u", "s", "d", "l", "r", "b", "c", "txt", scans=0, args=args)
     # 16#FFFF_FFFF in 32 unsigned bits = 4294967295; 16#FF in a SINT = -1; 2#1010 = 10
-    assert t == {"u": 4294967295, "s": -1, "d": 10, "l": 5, "r": 1500.0, "b": True, "c": True, "txt": "it's A\n"}
+    assert t == {
+        "u": 4294967295,
+        "s": -1,
+        "d": 10,
+        "l": 5,
+        "r": 1500.0,
+        "b": True,
+        "c": True,
+        "txt": "it's A\n",
+    }
 
 
 def test_set_rejects_a_pattern_wider_than_the_tag(st) -> None:
@@ -491,4 +603,13 @@ CPT(c2, 7 / 2);
     # circular (Low 10 > High 0): true when x >= 10 or x <= 0: 5 no, 15 yes
     # normal 0..10: 5 yes, 15 no; 7 / 2 in REAL = 3.5; integer DIV truncates = 3
     # CPT in DINT: 7 / 2 = 3, * 2 = 6; then 3 converted to REAL = 3.0
-    assert r.tags == {"a": False, "b": True, "c": True, "d": False, "r": 3.5, "q": 3, "c1": 6, "c2": 3.0}
+    assert r.tags == {
+        "a": False,
+        "b": True,
+        "c": True,
+        "d": False,
+        "r": 3.5,
+        "q": 3,
+        "c1": 6,
+        "c2": 3.0,
+    }

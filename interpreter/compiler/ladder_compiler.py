@@ -44,8 +44,14 @@ def _label(e: n.Expr | None) -> str:
 
 
 class LadderCompiler(RoutineCompiler):
-    def __init__(self, model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None,
-                 instance_edges: dict[int, int] | None = None) -> None:
+    def __init__(
+        self,
+        model: ProgramModel,
+        analysis: Analysis,
+        routine: n.Routine,
+        sites: list | None = None,
+        instance_edges: dict[int, int] | None = None,
+    ) -> None:
         super().__init__(model, analysis, routine, sites)
         # An add-on instruction's routine keeps its edges in hidden members of the instance
         # (frame slot 0): id(instruction) -> member index (semantics/aoi.py, decision 0024).
@@ -117,7 +123,9 @@ class LadderCompiler(RoutineCompiler):
             j.segment_of.append(seg)
         if not targets:
             return None
-        j.backward = any(j.label_segment.get(lbl, _SKIP_ALL) <= j.segment_of[i] for i, lbl in targets)
+        j.backward = any(
+            j.label_segment.get(lbl, _SKIP_ALL) <= j.segment_of[i] for i, lbl in targets
+        )
         j.pc = self.temp()
         j.back = self.temp() if j.backward else -1
         return j
@@ -265,7 +273,9 @@ class LadderCompiler(RoutineCompiler):
             self.emit(Op.RCALL, (cat.key, count), ins.span)
 
     def as_call(self, ins: n.LadderInstr) -> n.Call:
-        return n.Call(ins.name, [n.Arg(e, None, e.span) for e in ins.operands], ins.span, ins.name_span)
+        return n.Call(
+            ins.name, [n.Arg(e, None, e.span) for e in ins.operands], ins.span, ins.name_span
+        )
 
     def when_true(self, depth: int, body) -> None:  # type: ignore[no-untyped-def]
         """An output acting only on a true rung; the rung passes through unchanged."""
@@ -301,7 +311,9 @@ class LadderCompiler(RoutineCompiler):
         t = self.type_of(dest)
         self.place(dest)
         if isinstance(src, n.Literal) and isinstance(src.value, float) and t is LREAL:
-            self.emit(Op.CONST, (src.value, LREAL))  # a REAL literal keeps double precision in LREAL
+            self.emit(
+                Op.CONST, (src.value, LREAL)
+            )  # a REAL literal keeps double precision in LREAL
         else:
             if checked:
                 self.emit(Op.OVF, True)
@@ -511,7 +523,10 @@ class LadderCompiler(RoutineCompiler):
                     ctl = ops[0]
                     for bit in ("EN", "DN", "ER") + (("FD", "IN") if cat.name == "FSC" else ()):
                         self.set_member(ctl, bit, 0)
-                    for member, e in (("LEN", ops[1]), ("POS", ops[2])):  # the operands mirror LEN/POS
+                    for member, e in (
+                        ("LEN", ops[1]),
+                        ("POS", ops[2]),
+                    ):  # the operands mirror LEN/POS
                         v = const_number(e)
                         if isinstance(v, int):
                             self.set_member(ctl, member, v)
@@ -519,7 +534,9 @@ class LadderCompiler(RoutineCompiler):
                     self.edge(ins)  # a rung true in the first scan is a transition
                     self.emit(Op.CONST, (0, BOOL))
                     self.emit(Op.STORE, BOOL)
-                if cat.name not in LOWERED and (cat.family == "aoi" or lookup_prescan(cat.name, "rll") is not None):
+                if cat.name not in LOWERED and (
+                    cat.family == "aoi" or lookup_prescan(cat.name, "rll") is not None
+                ):
                     # an add-on instruction's prescan runs its Logic routine's prescan (as in ST)
                     count = self.operands(self.as_call(ins), cat)
                     self.emit(Op.PRESCAN, (cat.key, count, False), ins.span)
@@ -527,6 +544,11 @@ class LadderCompiler(RoutineCompiler):
         self.ops = main_ops
 
 
-def compile_ladder(model: ProgramModel, analysis: Analysis, routine: n.Routine, sites: list | None = None,
-                   instance_edges: dict[int, int] | None = None) -> Code:
+def compile_ladder(
+    model: ProgramModel,
+    analysis: Analysis,
+    routine: n.Routine,
+    sites: list | None = None,
+    instance_edges: dict[int, int] | None = None,
+) -> Code:
     return LadderCompiler(model, analysis, routine, sites, instance_edges).compile()

@@ -271,7 +271,9 @@ class RoutineCompiler:
             for e in args:
                 t = self.type_of(e)
                 self.value(e, t)
-            self.emit(Op.SETRV, len(args))  # RET() hands back no values: a JSR expecting some faults
+            self.emit(
+                Op.SETRV, len(args)
+            )  # RET() hands back no values: a JSR expecting some faults
             self.emit(Op.RETURN)
         elif name == "TND":
             self.emit(Op.RETURN)
@@ -290,7 +292,11 @@ class RoutineCompiler:
         if len(inputs) != len(params):
             self.emit(
                 Op.FAULT,
-                (4, 31, f"JSR passes {len(inputs)} parameter(s), the SBR of {routine.name} takes {len(params)}"),
+                (
+                    4,
+                    31,
+                    f"JSR passes {len(inputs)} parameter(s), the SBR of {routine.name} takes {len(params)}",
+                ),
                 span,
             )
         temps = []
@@ -447,7 +453,9 @@ class RoutineCompiler:
                 self.emit(Op.STORE, t, s.span)
             elif isinstance(s, n.CallStmt) and id(s.call) in self.a.call_of:
                 ins = self.a.call_of[id(s.call)]
-                if ins.name != "JSR" and (ins.family == "aoi" or lookup_prescan(ins.name, "st") is not None):
+                if ins.name != "JSR" and (
+                    ins.family == "aoi" or lookup_prescan(ins.name, "st") is not None
+                ):
                     count = self.operands(s.call, ins)
                     self.emit(Op.PRESCAN, (ins.key, count), s.span)
         self.ops = main_ops

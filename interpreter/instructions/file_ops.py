@@ -99,7 +99,9 @@ def fll(ctx: ExecContext, rung: bool, source: object, dest: object, length: int)
         elements[start + i] = converted
 
 
-def _fill_structures(elements: list, start: int, etype: DataType, count: int, value: object) -> None:
+def _fill_structures(
+    elements: list, start: int, etype: DataType, count: int, value: object
+) -> None:
     """Structure elements get the source's bytes unconverted, repeated over every byte."""
     if isinstance(value, float):
         pattern = to_bytes(value, REAL)

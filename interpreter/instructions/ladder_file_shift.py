@@ -98,8 +98,14 @@ def _finish(ctl: list, n: int) -> None:
 # ------------------------------------------------------------------ AVE / STD / SRT
 @implements("AVE")
 def ave(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, dest: Dest, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dim: int,
+    dest: Dest,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     values = _file_values(ctx, rung, arr, dim, ctl)
     if values is None:
@@ -113,8 +119,14 @@ def ave(
 
 @implements("STD")
 def std(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, dest: Dest, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dim: int,
+    dest: Dest,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     found = _file_values(ctx, rung, arr, dim, ctl)
     if found is None:
@@ -135,8 +147,13 @@ def _sort(ctx: ExecContext, arr: ArrayRef, dim: int, n: int) -> None:
 
 @implements("SRT@rll")
 def srt(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dim: int,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     n = _file_start(ctx, rung, ctl)
     if n is None:
@@ -154,21 +171,35 @@ def srt_st(ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, ctl: list) -> 
 
 @prescan("AVE", "STD")
 def statistics_prescan(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, dest: Dest, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dim: int,
+    dest: Dest,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     _pseudo(ctl, length, position)
 
 
 @prescan("SRT@rll")
 def srt_prescan(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, dim: int, ctl: list, length: object = None, position: object = None
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dim: int,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     _pseudo(ctl, length, position)
 
 
 # ------------------------------------------------------------------ BSL / BSR
-def _shift(ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, left: bool) -> None:
+def _shift(
+    ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, left: bool
+) -> None:
     if not rung:
         ctl[EN] = ctl[DN] = ctl[ER] = 0
         ctl[K_POS] = 0
@@ -203,17 +234,23 @@ def _shift(ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: objec
 
 
 @implements("BSL")
-def bsl(ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, length: object = None) -> None:
+def bsl(
+    ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, length: object = None
+) -> None:
     _shift(ctx, rung, arr, ctl, source, left=True)
 
 
 @implements("BSR")
-def bsr(ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, length: object = None) -> None:
+def bsr(
+    ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, length: object = None
+) -> None:
     _shift(ctx, rung, arr, ctl, source, left=False)
 
 
 @prescan("BSL", "BSR")
-def shift_prescan(ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, length: object = None) -> None:
+def shift_prescan(
+    ctx: ExecContext, rung: bool, arr: ArrayRef, ctl: list, source: object, length: object = None
+) -> None:
     _pseudo(ctl, length)
     ctl[EN] = ctl[UL] = 0
 
@@ -267,7 +304,9 @@ def _give(dest: object, value: object) -> None:
         dest.set(value)  # type: ignore[attr-defined]
 
 
-def _unload(ctx: ExecContext, rung: bool, arr: ArrayRef, dest: object, ctl: list, fifo: bool) -> None:
+def _unload(
+    ctx: ExecContext, rung: bool, arr: ArrayRef, dest: object, ctl: list, fifo: bool
+) -> None:
     if not rung:
         ctl[EU] = 0
         _queue_status(ctl)
@@ -291,33 +330,80 @@ def _unload(ctx: ExecContext, rung: bool, arr: ArrayRef, dest: object, ctl: list
 
 
 @implements("FFL")
-def ffl(ctx: ExecContext, rung: bool, source: object, arr: ArrayRef, ctl: list, length: object = None, position: object = None) -> None:
+def ffl(
+    ctx: ExecContext,
+    rung: bool,
+    source: object,
+    arr: ArrayRef,
+    ctl: list,
+    length: object = None,
+    position: object = None,
+) -> None:
     _load(ctx, rung, source, arr, ctl)
 
 
 @implements("LFL")
-def lfl(ctx: ExecContext, rung: bool, source: object, arr: ArrayRef, ctl: list, length: object = None, position: object = None) -> None:
+def lfl(
+    ctx: ExecContext,
+    rung: bool,
+    source: object,
+    arr: ArrayRef,
+    ctl: list,
+    length: object = None,
+    position: object = None,
+) -> None:
     _load(ctx, rung, source, arr, ctl)
 
 
 @implements("FFU")
-def ffu(ctx: ExecContext, rung: bool, arr: ArrayRef, dest: object, ctl: list, length: object = None, position: object = None) -> None:
+def ffu(
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dest: object,
+    ctl: list,
+    length: object = None,
+    position: object = None,
+) -> None:
     _unload(ctx, rung, arr, dest, ctl, fifo=True)
 
 
 @implements("LFU")
-def lfu(ctx: ExecContext, rung: bool, arr: ArrayRef, dest: object, ctl: list, length: object = None, position: object = None) -> None:
+def lfu(
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dest: object,
+    ctl: list,
+    length: object = None,
+    position: object = None,
+) -> None:
     _unload(ctx, rung, arr, dest, ctl, fifo=False)
 
 
 @prescan("FFL", "LFL")
-def load_prescan(ctx: ExecContext, rung: bool, source: object, arr: ArrayRef, ctl: list, length: object = None, position: object = None) -> None:
+def load_prescan(
+    ctx: ExecContext,
+    rung: bool,
+    source: object,
+    arr: ArrayRef,
+    ctl: list,
+    length: object = None,
+    position: object = None,
+) -> None:
     _pseudo(ctl, length, position)
     ctl[EN] = 1
 
 
 @prescan("FFU", "LFU")
-def unload_prescan(ctx: ExecContext, rung: bool, arr: ArrayRef, dest: object, ctl: list, length: object = None, position: object = None) -> None:
+def unload_prescan(
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    dest: object,
+    ctl: list,
+    length: object = None,
+    position: object = None,
+) -> None:
     _pseudo(ctl, length, position)
     ctl[EU] = 1
-

@@ -205,8 +205,16 @@ def _unary(name: str, f: UNARY) -> None:
 
 
 for _name, _f in (
-    ("SIN", fn.sin), ("COS", fn.cos), ("TAN", fn.tan), ("ASN", fn.asin), ("ACS", fn.acos),
-    ("ATN", fn.atan), ("LN", fn.ln), ("LOG", fn.log), ("DEG", fn.deg), ("RAD", fn.rad),
+    ("SIN", fn.sin),
+    ("COS", fn.cos),
+    ("TAN", fn.tan),
+    ("ASN", fn.asin),
+    ("ACS", fn.acos),
+    ("ATN", fn.atan),
+    ("LN", fn.ln),
+    ("LOG", fn.log),
+    ("DEG", fn.deg),
+    ("RAD", fn.rad),
 ):
     _unary(_name, _f)
 
@@ -223,7 +231,9 @@ def lim(ctx: ExecContext, rung: bool, low: Number, test: Number, high: Number) -
     """Low <= Test <= High; with Low > High the circular range Test >= Low or Test <= High."""
     if not rung:
         return False
-    if not _all_int(low, test, high) and all(isinstance(v, int) or f32(v) == v for v in (low, test, high)):
+    if not _all_int(low, test, high) and all(
+        isinstance(v, int) or f32(v) == v for v in (low, test, high)
+    ):
         low, test, high = (f32(float(v)) for v in (low, test, high))  # compared as REALs
     if low <= high:
         return low <= test <= high

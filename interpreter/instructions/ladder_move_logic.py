@@ -59,7 +59,15 @@ def not_(ctx: ExecContext, rung: bool, a: int, dest: Dest) -> None:
 
 
 @implements("BTD")
-def btd(ctx: ExecContext, rung: bool, source: int, source_bit: int, dest: Ref, dest_bit: int, length: int) -> None:
+def btd(
+    ctx: ExecContext,
+    rung: bool,
+    source: int,
+    source_bit: int,
+    dest: Ref,
+    dest_bit: int,
+    length: int,
+) -> None:
     if not rung:
         return
     width = dest.type.bits

@@ -39,8 +39,14 @@ def _step(ctx: ExecContext, arr: ArrayRef, pos: int) -> int:
 
 @implements("SQI")
 def sqi(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, mask: int, source: int, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    mask: int,
+    source: int,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> bool:
     if not rung:
         return False
@@ -83,8 +89,14 @@ def _advance(ctl: list, rung: bool) -> bool:
 
 @implements("SQO")
 def sqo(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, mask: int, dest: Ref | BitRef, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    mask: int,
+    dest: Ref | BitRef,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     if _advance(ctl, rung):
         m = int(mask) & WORD
@@ -94,8 +106,13 @@ def sqo(
 
 @implements("SQL")
 def sql(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, source: int, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    source: int,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     if _advance(ctl, rung):
         _step(ctx, arr, ctl[K_POS])  # bounds check
@@ -104,8 +121,14 @@ def sql(
 
 @prescan("SQI")
 def sqi_prescan(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, mask: int, source: int, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    mask: int,
+    source: int,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> bool:
     _pseudo(ctl, length, position)
     return False
@@ -113,8 +136,14 @@ def sqi_prescan(
 
 @prescan("SQO")
 def sqo_prescan(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, mask: int, dest: object, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    mask: int,
+    dest: object,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     _pseudo(ctl, length, position)
     ctl[EN] = 1
@@ -122,8 +151,13 @@ def sqo_prescan(
 
 @prescan("SQL")
 def sql_prescan(
-    ctx: ExecContext, rung: bool, arr: ArrayRef, source: int, ctl: list,
-    length: object = None, position: object = None,
+    ctx: ExecContext,
+    rung: bool,
+    arr: ArrayRef,
+    source: int,
+    ctl: list,
+    length: object = None,
+    position: object = None,
 ) -> None:
     _pseudo(ctl, length, position)
     ctl[EN] = 1

@@ -31,7 +31,9 @@ def fault_count(ctx: ExecContext) -> int:
     return f.count if f is not None else 0
 
 
-def set_flags(ctx: ExecContext, value: Number, overflow: bool = False, carry: bool = False, fault: bool = True) -> None:
+def set_flags(
+    ctx: ExecContext, value: Number, overflow: bool = False, carry: bool = False, fault: bool = True
+) -> None:
     """Flags for a value already stored (N, Z from it; V, C as given)."""
     st = ctx.status
     st["N"] = int(value < 0)
@@ -43,7 +45,13 @@ def set_flags(ctx: ExecContext, value: Number, overflow: bool = False, carry: bo
 
 
 def store(
-    ctx: ExecContext, dest: Dest, value: Number, *, overflow: bool = False, carry: bool = False, fault: bool = True
+    ctx: ExecContext,
+    dest: Dest,
+    value: Number,
+    *,
+    overflow: bool = False,
+    carry: bool = False,
+    fault: bool = True,
 ) -> None:
     """Convert `value` to Dest's type, store it and update the math status flags.
 

@@ -67,11 +67,17 @@ READABLE: dict[tuple[str, str], str] = {
 }
 WRITABLE: frozenset[tuple[str, str]] = frozenset(
     {
-        ("WALLCLOCKTIME", "CURRENTVALUE"), ("WALLCLOCKTIME", "DATETIME"),
-        ("WALLCLOCKTIME", "LOCALDATETIME"), ("WALLCLOCKTIME", "UTCOFFSET"),
-        ("WALLCLOCKTIME", "DSTADJUSTMENT"), ("WALLCLOCKTIME", "APPLYDST"),
-        ("TASK", "MAXSCANTIME"), ("TASK", "OVERLAPCOUNT"), ("PROGRAM", "MAXSCANTIME"),
-        ("FAULTLOG", "MINOREVENTS"), ("FAULTLOG", "MINORFAULTBITS"),
+        ("WALLCLOCKTIME", "CURRENTVALUE"),
+        ("WALLCLOCKTIME", "DATETIME"),
+        ("WALLCLOCKTIME", "LOCALDATETIME"),
+        ("WALLCLOCKTIME", "UTCOFFSET"),
+        ("WALLCLOCKTIME", "DSTADJUSTMENT"),
+        ("WALLCLOCKTIME", "APPLYDST"),
+        ("TASK", "MAXSCANTIME"),
+        ("TASK", "OVERLAPCOUNT"),
+        ("PROGRAM", "MAXSCANTIME"),
+        ("FAULTLOG", "MINOREVENTS"),
+        ("FAULTLOG", "MINORFAULTBITS"),
     }
 )
 
@@ -222,7 +228,9 @@ def gsv(ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, des
 
 
 @implements("SSV")
-def ssv(ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, source: object) -> None:
+def ssv(
+    ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, source: object
+) -> None:
     if not rung:
         return
     key = attribute_names(cls, attr)

@@ -96,7 +96,9 @@ def ton(ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: obj
 
 
 @prescan("TON")
-def ton_prescan(ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: object = None) -> None:
+def ton_prescan(
+    ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: object = None
+) -> None:
     apply_pseudo(t, ((PRE, preset), (ACC, accum)))
     _clear_bits(t)
     t[ACC] = 0
@@ -126,7 +128,9 @@ def tof(ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: obj
 
 
 @prescan("TOF")
-def tof_prescan(ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: object = None) -> None:
+def tof_prescan(
+    ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: object = None
+) -> None:
     apply_pseudo(t, ((PRE, preset), (ACC, accum)))
     _clear_bits(t)
     t[ACC] = t[PRE]
@@ -142,7 +146,9 @@ def rto(ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: obj
 
 
 @prescan("RTO")
-def rto_prescan(ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: object = None) -> None:
+def rto_prescan(
+    ctx: ExecContext, rung: bool, t: list, preset: object = None, accum: object = None
+) -> None:
     apply_pseudo(t, ((PRE, preset), (ACC, accum)))
     _clear_bits(t)
 
@@ -176,7 +182,9 @@ def ctu(ctx: ExecContext, rung: bool, c: list, preset: object = None, accum: obj
 
 
 @prescan("CTU")
-def ctu_prescan(ctx: ExecContext, rung: bool, c: list, preset: object = None, accum: object = None) -> None:
+def ctu_prescan(
+    ctx: ExecContext, rung: bool, c: list, preset: object = None, accum: object = None
+) -> None:
     apply_pseudo(c, ((C_PRE, preset), (C_ACC, accum)))
     c[CU] = 1  # a rung already true at start-up is not a count
 
@@ -200,7 +208,9 @@ def ctd(ctx: ExecContext, rung: bool, c: list, preset: object = None, accum: obj
 
 
 @prescan("CTD")
-def ctd_prescan(ctx: ExecContext, rung: bool, c: list, preset: object = None, accum: object = None) -> None:
+def ctd_prescan(
+    ctx: ExecContext, rung: bool, c: list, preset: object = None, accum: object = None
+) -> None:
     apply_pseudo(c, ((C_PRE, preset), (C_ACC, accum)))
     c[CD] = 1
 

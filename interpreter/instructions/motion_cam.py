@@ -145,5 +145,7 @@ def _prescan_matc(ctx: ExecContext, rung: bool, axis: list, ctl: list, *rest: ob
 
 
 @prescan("MDAC")
-def _prescan_mdac(ctx: ExecContext, rung: bool, slave: list, master: list, ctl: list, *rest: object) -> None:
+def _prescan_mdac(
+    ctx: ExecContext, rung: bool, slave: list, master: list, ctl: list, *rest: object
+) -> None:
     clear_on_prescan(ctl)

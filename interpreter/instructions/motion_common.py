@@ -249,4 +249,3 @@ def time_based_rates(tb: TimeBased, distance: float) -> Dynamics:
     a, ja = rates(ta)
     dcc, jd = rates(td)
     return Dynamics(v, a, dcc, ja, jd, tb.master_driven)
-

@@ -110,13 +110,18 @@ def mam(
         if whole(merge_speed) == 1:
             fail(rt, ctl, MotionError.MERGE_CURRENT_WITH_SECONDS)
             return
-        if abs(float(core.command_velocity[i])) > _AT_REST or abs(float(core.command_acceleration[i])) > _AT_REST:
+        if (
+            abs(float(core.command_velocity[i])) > _AT_REST
+            or abs(float(core.command_acceleration[i])) > _AT_REST
+        ):
             fail(rt, ctl, MotionError.AXIS_NOT_AT_REST)
             return
         pos = real(position)
         dist = pos - float(core.command_position[i]) if mt == 0 else pos
         dyn = time_based_rates(dyn, dist)
-    if event_distance is not None and (calculated_data is None or len(calculated_data) < len(event_distance)):
+    if event_distance is not None and (
+        calculated_data is None or len(calculated_data) < len(event_distance)
+    ):
         fail(rt, ctl, MotionError.MDSC_CALCULATED_DATA_SIZE)
         return
     r = core.start_move(
@@ -208,7 +213,12 @@ def mas(
     if ax is None:
         return
     core, i, get, v = ax.group.core, ax.index, ax.layout.get, ax.value
-    cd, du, cj, ju = whole(change_decel), whole(decel_units), whole(change_decel_jerk), whole(jerk_units)
+    cd, du, cj, ju = (
+        whole(change_decel),
+        whole(decel_units),
+        whole(change_decel_jerk),
+        whole(jerk_units),
+    )
     for value, ok, index in ((cd, (0, 1), 3), (du, (0, 1), 5), (cj, (0, 1), 6), (ju, (0, 1, 2), 8)):
         if value not in ok:
             fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, index)

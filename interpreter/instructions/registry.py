@@ -28,10 +28,35 @@ Impl = Callable[..., Any]
 
 # Instructions the compilers lower to bytecode themselves: they have no implementation
 # function (ladder contacts and coils, compares, MOV, CPT, CMP, FAL, FSC, program control).
-LOWERED = frozenset({
-    "XIC", "XIO", "OTE", "OTL", "OTU", "EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ", "MOV",
-    "JMP", "LBL", "MCR", "AFI", "NOP", "TND", "JSR", "SBR", "RET", "CPT", "CMP", "FAL", "FSC",
-})
+LOWERED = frozenset(
+    {
+        "XIC",
+        "XIO",
+        "OTE",
+        "OTL",
+        "OTU",
+        "EQU",
+        "NEQ",
+        "GRT",
+        "GEQ",
+        "LES",
+        "LEQ",
+        "MOV",
+        "JMP",
+        "LBL",
+        "MCR",
+        "AFI",
+        "NOP",
+        "TND",
+        "JSR",
+        "SBR",
+        "RET",
+        "CPT",
+        "CMP",
+        "FAL",
+        "FSC",
+    }
+)
 
 IMPLEMENTATIONS: dict[str, Impl] = {}
 PRESCANS: dict[str, Impl] = {}
@@ -75,7 +100,9 @@ def load_all() -> None:
     from .. import instructions
 
     global _LOADED
-    if _LOADED:  # lookups run per call site; scanning the package each time cost seconds on big projects
+    if (
+        _LOADED
+    ):  # lookups run per call site; scanning the package each time cost seconds on big projects
         return
     for mod in pkgutil.iter_modules(instructions.__path__):
         if mod.name not in ("registry", "implemented"):

@@ -885,7 +885,10 @@ class MotionGroup:
         tl[self._cams.locked_axes()] = True
         st["TimeCamLockStatus"] = tl
         # master-driven moves and jogs with a lock direction: following their master
-        for name, kind in (("MoveLockStatus", GeneratorKind.MOVE), ("JogLockStatus", GeneratorKind.JOG)):
+        for name, kind in (
+            ("MoveLockStatus", GeneratorKind.MOVE),
+            ("JogLockStatus", GeneratorKind.JOG),
+        ):
             arr = np.zeros(n, dtype=bool)
             arr[[
                 g.axis for g in self._gens

@@ -36,8 +36,13 @@ class Fault:
 
     def to_json(self) -> dict[str, object]:
         d: dict[str, object] = {
-            "type": self.type, "code": self.code, "major": self.major, "message": self.message,
-            "file": self.file, "line": self.line, "column": self.column,
+            "type": self.type,
+            "code": self.code,
+            "major": self.major,
+            "message": self.message,
+            "file": self.file,
+            "line": self.line,
+            "column": self.column,
         }
         if not self.major:
             d["count"] = self.count
@@ -100,7 +105,9 @@ class Controller:
         ns["_AOI_PRE"] = self.aoi_prescans
         return ns
 
-    def _compile_routines(self, routines: list[n.Routine], ns: dict[str, Any], tag: str) -> dict[str, Callable[..., None]]:
+    def _compile_routines(
+        self, routines: list[n.Routine], ns: dict[str, Any], tag: str
+    ) -> dict[str, Callable[..., None]]:
         compiled: dict[str, Callable[..., None]] = {}
         for i, r in enumerate(routines):
             if r.language == "st":
@@ -135,18 +142,24 @@ class Controller:
                 fn = self._translate(code, code.ops, f"_aoi{k}_{name.lower()}", self.ns)
                 if name == "LOGIC":
                     routines.logic = fn
-                    routines.logic_prescan = self._translate(code, code.prescan, f"_aoi{k}_prescan", self.ns)
+                    routines.logic_prescan = self._translate(
+                        code, code.prescan, f"_aoi{k}_prescan", self.ns
+                    )
                 else:
                     routines.enable_in_false = fn
 
-    def _translate(self, code: Any, ops: list, name: str, ns: dict[str, Any] | None = None) -> Callable[..., None]:
+    def _translate(
+        self, code: Any, ops: list, name: str, ns: dict[str, Any] | None = None
+    ) -> Callable[..., None]:
         ns = self.ns if ns is None else ns
         src = Translator(code, ns, name, ops).translate()
         try:
             compiled = compile(src, f"<logix {code.path}:{name}>", "exec")
         except (SyntaxError, RecursionError):  # Python's limits: 100 nested blocks, parser depth
-            raise InputError(f"{code.path}: routine '{code.name}' nests statements too deeply to run "
-                             f"(the limit is about 90 levels)") from None
+            raise InputError(
+                f"{code.path}: routine '{code.name}' nests statements too deeply to run "
+                f"(the limit is about 90 levels)"
+            ) from None
         exec(compiled, ns)  # noqa: S102
         return ns[name]  # type: ignore[no-any-return]
 
@@ -176,19 +189,28 @@ class Controller:
             self.major_fault = self._fault(f.type, f.code, True, f.message, f.site)
             return False
         except RecursionError:
-            self.major_fault = self._fault(4, 84, True, "stack overflow: JSR calls nested too deep", ctx.site)
+            self.major_fault = self._fault(
+                4, 84, True, "stack overflow: JSR calls nested too deep", ctx.site
+            )
             return False
         finally:
             self.scans += 1
         return True
 
-    def _fault(self, type_: int, code: int, major: bool, message: str, site: int, count: int = 1) -> Fault:
+    def _fault(
+        self, type_: int, code: int, major: bool, message: str, site: int, count: int = 1
+    ) -> Fault:
         if 0 <= site < len(self.sites):
             path, span = self.sites[site]
         else:
-            path, span = (self.model.routines[0].path if self.model.routines else self.model.name), n.Span(1, 1, 1, 1)
+            path, span = (
+                (self.model.routines[0].path if self.model.routines else self.model.name),
+                n.Span(1, 1, 1, 1),
+            )
         project = self.model.extra.get("l5x")
-        where = project.context.get(span.line) if project is not None and path == project.path else None  # type: ignore[attr-defined]
+        where = (
+            project.context.get(span.line) if project is not None and path == project.path else None
+        )  # type: ignore[attr-defined]
         if where:
             message = f"{message} ({where})"
         return Fault(type_, code, major, message, path, span.line, span.col, count)
@@ -204,7 +226,9 @@ class Controller:
         return out
 
     # ------------------------------------------------------------ watching and setting
-    def reference(self, text: str) -> tuple[Callable[[], object], DataType, Callable[[object], None]]:
+    def reference(
+        self, text: str
+    ) -> tuple[Callable[[], object], DataType, Callable[[object], None]]:
         """Getter, type and setter for a tag reference such as `Axis1.ActualPosition`."""
         try:
             expr = parse_expression(text.strip())
@@ -221,7 +245,9 @@ class Controller:
         del self.analysis.diags[before:]
         if t is None or new:
             raise WatchError(f"'{text}': {new[0].message if new else 'not a tag reference'}")
-        rc = RoutineCompiler(self.model, self.analysis, n.Routine("watch", "st", "<watch>"), self.sites)
+        rc = RoutineCompiler(
+            self.model, self.analysis, n.Routine("watch", "st", "<watch>"), self.sites
+        )
         rc.place(expr)
         place_ops = list(rc.ops)
         from ..compiler.bytecode import Ins, Op
@@ -233,7 +259,11 @@ class Controller:
         value_expr = tr.pop_val().expr
         body = "\n".join(tr.lines).replace("\n        ", "\n    ")
         fname = f"_watch{len(self.ns)}"
-        src = f"def {fname}(T, ctx):\n{body}\n    return {value_expr}\n" if tr.lines else f"def {fname}(T, ctx):\n    return {value_expr}\n"
+        src = (
+            f"def {fname}(T, ctx):\n{body}\n    return {value_expr}\n"
+            if tr.lines
+            else f"def {fname}(T, ctx):\n    return {value_expr}\n"
+        )
         exec(compile(src, "<watch>", "exec"), self.ns)  # noqa: S102
         fn = self.ns[fname]
 
@@ -242,20 +272,28 @@ class Controller:
                 if not isinstance(value, bytes):
                     raise WatchError(f"'{text}' is a STRING: give a quoted literal such as 'abc'")
                 if len(value) > len(fn(self.T, self.ctx)[1]):  # type: ignore[index]
-                    raise WatchError(f"'{text}': '{value.decode('latin-1')}' is longer than the tag's "
-                                     f"{len(fn(self.T, self.ctx)[1])} characters")  # type: ignore[index]
+                    raise WatchError(
+                        f"'{text}': '{value.decode('latin-1')}' is longer than the tag's "
+                        f"{len(fn(self.T, self.ctx)[1])} characters"
+                    )  # type: ignore[index]
                 set_string(fn(self.T, self.ctx), value)  # type: ignore[arg-type]  # the live structure
                 return
             if not isinstance(t, Elementary):
                 raise WatchError(f"'{text}' is a {t}: only elementary tags and strings can be set")
             _check_settable(text, value, t)
-            store_ops = place_ops + [Ins(Op.CONST, (value, _literal_type(value, t))), Ins(Op.STORE, t)]
+            store_ops = place_ops + [
+                Ins(Op.CONST, (value, _literal_type(value, t))),
+                Ins(Op.STORE, t),
+            ]
             tr2 = Translator(rc.code, self.ns, "_s", store_ops)
             tr2.indent = 1
             for ins in store_ops:
                 tr2.op(ins)
             sname = f"_set{len(self.ns)}"
-            exec(compile(f"def {sname}(T, ctx):\n" + "\n".join(tr2.lines) + "\n", "<set>", "exec"), self.ns)  # noqa: S102
+            exec(
+                compile(f"def {sname}(T, ctx):\n" + "\n".join(tr2.lines) + "\n", "<set>", "exec"),
+                self.ns,
+            )  # noqa: S102
             self.ns[sname](self.T, self.ctx)
 
         return (lambda: fn(self.T, self.ctx)), t, setter
@@ -263,7 +301,11 @@ class Controller:
 
 def _qualify(e: n.Expr) -> n.Expr:
     """`Program:Main.Tag...` parses as member Tag of `Program:Main`: make the root one name."""
-    if isinstance(e, n.Member) and isinstance(e.base, n.Name) and e.base.ident.upper().startswith("PROGRAM:"):
+    if (
+        isinstance(e, n.Member)
+        and isinstance(e.base, n.Name)
+        and e.base.ident.upper().startswith("PROGRAM:")
+    ):
         return n.Name(f"{e.base.ident}.{e.name}", e.span)
     for attr in ("base",):
         inner = getattr(e, attr, None)
@@ -281,7 +323,9 @@ def _check_settable(text: str, value: object, t: Elementary) -> None:
     if t.kind is Kind.BOOL and value not in (0, 1):
         raise WatchError(f"'{text}' is BOOL: use 1/0 or TRUE/FALSE, not {value!r}")
     if t.kind is Kind.INT:
-        lo, hi = (-(1 << (t.bits - 1)), (1 << (t.bits - 1)) - 1) if t.signed else (0, (1 << t.bits) - 1)
+        lo, hi = (
+            (-(1 << (t.bits - 1)), (1 << (t.bits - 1)) - 1) if t.signed else (0, (1 << t.bits) - 1)
+        )
         if not lo <= value <= hi:  # type: ignore[operator]  # a REAL literal is rounded later, as by ':='
             raise WatchError(f"'{text}' is {t.name}: {value} is outside {lo}..{hi}")
 
@@ -313,6 +357,6 @@ def to_json_value(value: object, t: DataType | None) -> object:
         assert isinstance(value, list)
         flat = [to_json_value(v, t.elem) for v in value]
         for size in reversed(t.dims[1:]):  # row-major storage: nest from the last subscript out
-            flat = [flat[i:i + size] for i in range(0, len(flat), size)]
+            flat = [flat[i : i + size] for i in range(0, len(flat), size)]
         return flat
     return value if isinstance(value, int | float | str | bool) or value is None else str(value)

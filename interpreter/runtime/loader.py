@@ -80,7 +80,9 @@ def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
     if suffix == ".rll":
         routine, diags = parse_rll(read_text(path), str(path))
         return [routine], diags
-    raise InputError(f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})")
+    raise InputError(
+        f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})"
+    )
 
 
 def read_project(path: Path) -> tuple[L5XProject | None, list[Diagnostic]]:
@@ -129,9 +131,13 @@ def load(paths: list[Path], tags: Path | None = None) -> Loaded:
         raise InputError("no program file given")
     if any(is_project(p) for p in paths):
         if len(paths) > 1:
-            raise InputError("an .L5X file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)")
+            raise InputError(
+                "an .L5X file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
+            )
         if tags is not None:
-            raise InputError("--tags gives controller tags to .st/.rll files; an .L5X project has its own")
+            raise InputError(
+                "--tags gives controller tags to .st/.rll files; an .L5X project has its own"
+            )
         with gc_paused():
             return load_project(paths[0])
     with gc_paused():
@@ -156,7 +162,9 @@ def _load(paths: list[Path], tags: Path | None) -> Loaded:
             types, decls, cdiags = controller_scope(project)
             diags.extend(cdiags)
             shared = (decls, str(tags))
-    model, mdiags = build_program(routines[0].program_name or routines[0].name, routines, types, shared)
+    model, mdiags = build_program(
+        routines[0].program_name or routines[0].name, routines, types, shared
+    )
     diags.extend(mdiags)
     analysis = check_program(model)
     diags.extend(analysis.diags)

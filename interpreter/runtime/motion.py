@@ -174,7 +174,11 @@ class MotionRuntime:
         from ..semantics.checker import cam_points, is_cam_profile_array
 
         for t in model.tags.values():
-            if t.init is None or not isinstance(t.init, n.ArrayInit) or not is_cam_profile_array(t.type):
+            if (
+                t.init is None
+                or not isinstance(t.init, n.ArrayInit)
+                or not is_cam_profile_array(t.type)
+            ):
                 continue
             pts = cam_points(t.init)
             elements = T[t.slot]
@@ -357,12 +361,13 @@ class MotionRuntime:
             plan = _write_plan(ax.layout)
             rows = rows_by_plan.get(id(plan))
             if rows is None:  # status members the core does not simulate stay 0
-                cols = [sources.get(m, st.get(_STATUS_KEY.get(m, ""), zero)) for m in plan.int_names]
+                cols = [
+                    sources.get(m, st.get(_STATUS_KEY.get(m, ""), zero)) for m in plan.int_names
+                ]
                 rows = rows_by_plan[id(plan)] = np.vstack(cols).astype(np.int64).T.tolist()
             v, i = ax.value, ax.index
             v[plan.reals] = reals[i]
             v[plan.ints] = rows[i]
-
 
     def _average_velocity(self, g: Group) -> np.ndarray:
         """Actual travel over each axis's AverageVelocityTimebase, per second."""
@@ -370,7 +375,9 @@ class MotionRuntime:
         pos = g.core.actual_position
         tb_at = g.axes[0].layout.index["AVERAGEVELOCITYTIMEBASE"]
         tb = np.array([ax.value[tb_at] for ax in g.axes], dtype=float)
-        windows = np.where(tb > 0, np.clip(np.rint(tb / cup), 1, _AVG_MAX_UPDATES), 1).astype(np.intp)
+        windows = np.where(tb > 0, np.clip(np.rint(tb / cup), 1, _AVG_MAX_UPDATES), 1).astype(
+            np.intp
+        )
         size = int(windows.max()) + 1
         if g.history.shape[0] < size:  # grow the ring (rare: a longer timebase was set)
             g.history = np.vstack((g.history, np.repeat(g.history[-1:], size - len(g.history), 0)))
@@ -403,10 +410,14 @@ def _write_plan(layout: AxisLayout) -> _WritePlan:
     names = {i: name for name, i in ix.items()}
     r0 = ix[_REALS[0].upper()]
     # the catalog declares these members consecutively; the slices rely on it
-    assert [ix[n.upper()] for n in _REALS] == list(range(r0, r0 + len(_REALS))), "AXIS REAL member order"
+    assert [ix[n.upper()] for n in _REALS] == list(range(r0, r0 + len(_REALS))), (
+        "AXIS REAL member order"
+    )
     s0, s1 = ix["AXISSTATUS"], ix["MAXIMUMSPEEDEXCEEDED"] + 1
     assert s0 < ix["MOTIONSTATUS"] < s1
-    return _WritePlan(slice(r0, r0 + len(_REALS)), slice(s0, s1), tuple(names[i] for i in range(s0, s1)))
+    return _WritePlan(
+        slice(r0, r0 + len(_REALS)), slice(s0, s1), tuple(names[i] for i in range(s0, s1))
+    )
 
 
 def _limit(x: float) -> float:

@@ -25,7 +25,9 @@ def allocate(model: ProgramModel) -> list[object]:
     return storage
 
 
-def initial_value(t: DataType, init: n.Init, value: object, model: ProgramModel, storage: list[object]) -> object:
+def initial_value(
+    t: DataType, init: n.Init, value: object, model: ProgramModel, storage: list[object]
+) -> object:
     """Apply a (verified) initialiser to a fresh value of type t."""
     if isinstance(t, Elementary):
         v = const_number(init)
@@ -41,8 +43,14 @@ def initial_value(t: DataType, init: n.Init, value: object, model: ProgramModel,
                 if m is None:
                     continue
                 idx, mt = m
-                if isinstance(mt, ArrayType) and is_axis(mt.elem) and isinstance(minit, n.ArrayInit):
-                    value[idx] = [_axis_ref(item, model) for item in minit.items] + [None] * (mt.size - len(minit.items))
+                if (
+                    isinstance(mt, ArrayType)
+                    and is_axis(mt.elem)
+                    and isinstance(minit, n.ArrayInit)
+                ):
+                    value[idx] = [_axis_ref(item, model) for item in minit.items] + [None] * (
+                        mt.size - len(minit.items)
+                    )
                     continue
                 value[idx] = initial_value(mt, minit, value[idx], model, storage)
         return value

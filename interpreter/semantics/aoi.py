@@ -53,8 +53,14 @@ class Aoi:
     edges: dict[int, int] = field(default_factory=dict)  # id(ladder instruction) -> hidden member
 
 
-def define_aoi(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic],
-               aoi_names: frozenset[str] = frozenset()) -> Aoi:
+def define_aoi(
+    types: TypeTable,
+    decl: AoiDecl,
+    st: StructType,
+    path: str,
+    diags: list[Diagnostic],
+    aoi_names: frozenset[str] = frozenset(),
+) -> Aoi:
     """Fill the (already declared) instance type `st` and build the call signature.
 
     `aoi_names` (upper case) are the project's add-on instructions: a call of one of them is
@@ -82,7 +88,9 @@ def _edge_members(types: TypeTable, aoi: Aoi, aoi_names: frozenset[str]) -> None
                     aoi.type.hidden.add(key.upper())
 
 
-def _define(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic]) -> Aoi:
+def _define(
+    types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: list[Diagnostic]
+) -> Aoi:
     aoi = Aoi(decl.name, st, path)
     frame = 1
     operands = [Operand("Instance", (st.name,), "tag", "inout", doc=f"{decl.name} instance tag")]
@@ -106,7 +114,9 @@ def _define(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: l
             value = const_number(p.decl.init) if p.decl.init is not None else None
             if value is not None:
                 st.defaults[key] = value
-            aoi.tags[key] = Tag(p.name, t, sp, path, p.decl.init, slot=0, access=(idx,), init_path=path)
+            aoi.tags[key] = Tag(
+                p.name, t, sp, path, p.decl.init, slot=0, access=(idx,), init_path=path
+            )
             param = AoiParam(p.name, p.usage, t, idx, 0)
         if p.required and key not in ("ENABLEIN", "ENABLEOUT"):
             aoi.required.append(param)
@@ -139,16 +149,33 @@ def _define(types: TypeTable, decl: AoiDecl, st: StructType, path: str, diags: l
             path_.append(m[0])
             at = m[1]
         if target is None or at is None or a.name.upper() in aoi.tags:
-            diags.append(diag("U305", f"alias parameter '{a.name}' for '{a.target}' cannot be simulated", path, a.span))
+            diags.append(
+                diag(
+                    "U305",
+                    f"alias parameter '{a.name}' for '{a.target}' cannot be simulated",
+                    path,
+                    a.span,
+                )
+            )
             continue
-        aoi.tags[a.name.upper()] = Tag(a.name, at, a.span, path, slot=target.slot, access=tuple(path_), alias_of=target)
+        aoi.tags[a.name.upper()] = Tag(
+            a.name, at, a.span, path, slot=target.slot, access=tuple(path_), alias_of=target
+        )
     for r in decl.routines:
         aoi.routines[r.name.upper()] = r
     if "LOGIC" not in aoi.routines and decl.routines:
-        diags.append(diag("E124", f"add-on instruction '{decl.name}' has no Logic routine", path, decl.span))
+        diags.append(
+            diag("E124", f"add-on instruction '{decl.name}' has no Logic routine", path, decl.span)
+        )
     aoi.instruction = Instruction(
-        name=decl.name.upper(), aliases=(), languages=frozenset({"st", "rll"}), kind="instruction",
-        transitional=False, doc=f"Add-On Instruction {decl.name}", operands=tuple(operands), family="aoi",
+        name=decl.name.upper(),
+        aliases=(),
+        languages=frozenset({"st", "rll"}),
+        kind="instruction",
+        transitional=False,
+        doc=f"Add-On Instruction {decl.name}",
+        operands=tuple(operands),
+        family="aoi",
     )
     return aoi
 
@@ -168,5 +195,11 @@ def _operand(p: AoiParam) -> Operand:
 def same_shape(arg: DataType, param: DataType) -> bool:
     """An InOut argument must have the parameter's type (arrays: element type and dimensions)."""
     if isinstance(param, ArrayType):
-        return isinstance(arg, ArrayType) and arg.elem is param.elem and len(arg.dims) == len(param.dims)
-    return arg is param or (isinstance(arg, Elementary) and isinstance(param, Elementary) and arg.name == param.name)
+        return (
+            isinstance(arg, ArrayType)
+            and arg.elem is param.elem
+            and len(arg.dims) == len(param.dims)
+        )
+    return arg is param or (
+        isinstance(arg, Elementary) and isinstance(param, Elementary) and arg.name == param.name
+    )

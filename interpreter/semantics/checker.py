@@ -41,7 +41,22 @@ BITS = (n.Bit, n.IndirectBit)
 COMPUTED = (n.Binary, n.Call)
 OPERATIONS = (n.Unary, n.Binary, n.Call)  # what _is_expression can be true for
 # Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
-REAL_FUNCTIONS = {"SQRT", "LN", "LOG", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ASN", "ACS", "ATN", "DEG", "RAD"}
+REAL_FUNCTIONS = {
+    "SQRT",
+    "LN",
+    "LOG",
+    "SIN",
+    "COS",
+    "TAN",
+    "ASIN",
+    "ACOS",
+    "ATAN",
+    "ASN",
+    "ACS",
+    "ATN",
+    "DEG",
+    "RAD",
+}
 
 
 @dataclass(slots=True)
@@ -108,7 +123,9 @@ def unimplemented(ins: Instruction, language: str) -> bool:
 
 
 def is_cam_profile_array(t: DataType) -> bool:
-    return isinstance(t, ArrayType) and isinstance(t.elem, StructType) and t.elem.name == "CAM_PROFILE"
+    return (
+        isinstance(t, ArrayType) and isinstance(t.elem, StructType) and t.elem.name == "CAM_PROFILE"
+    )
 
 
 def cam_points(init: n.ArrayInit) -> list[tuple[float, float, int]]:
@@ -173,8 +190,14 @@ class _OperandCheck:
             or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
         )
         return _OperandCheck(
-            op, special, language == "rll" and not op.expression, fmt == "memory", fmt in ("tag", "memory"),
-            fmt == "immediate", op.dir in ("out", "inout") and fmt != "immediate", _elementary_accepted(op.types),
+            op,
+            special,
+            language == "rll" and not op.expression,
+            fmt == "memory",
+            fmt in ("tag", "memory"),
+            fmt == "immediate",
+            op.dir in ("out", "inout") and fmt != "immediate",
+            _elementary_accepted(op.types),
         )
 
 
@@ -334,7 +357,9 @@ class Checker(LadderChecks):
             # list may be shorter than its array (MCCP's Length says how many are used).
             short_ok = isinstance(t.elem, StructType) and t.elem.name == "CAM"
             if len(init.items) > t.size or (len(init.items) < t.size and not short_ok):
-                self.err("E118", f"{len(init.items)} elements given for an array of {t.size}", init.span)
+                self.err(
+                    "E118", f"{len(init.items)} elements given for an array of {t.size}", init.span
+                )
             for item in init.items:
                 self.check_init(item, t.elem)
             return
@@ -345,14 +370,24 @@ class Checker(LadderChecks):
             for mname, mspan, value in init.members:
                 m = t.member(mname)
                 if m is None:
-                    self.err("E118", f"'{t.name}' has no member '{mname}'{self.suggest(mname, [x for x, _ in t.members])}", mspan)
+                    self.err(
+                        "E118",
+                        f"'{t.name}' has no member '{mname}'{self.suggest(mname, [x for x, _ in t.members])}",
+                        mspan,
+                    )
                     continue
                 mt = m[1]
-                if isinstance(value, n.ArrayInit) and isinstance(mt, ArrayType) and is_axis(mt.elem):
+                if (
+                    isinstance(value, n.ArrayInit)
+                    and isinstance(mt, ArrayType)
+                    and is_axis(mt.elem)
+                ):
                     for item in value.items:
                         tag = self.lookup(item.ident) if isinstance(item, n.Name) else None
                         if tag is None or not is_axis(tag.type):
-                            self.err("E118", "Axes must name axis tags of this program", _init_span(item))
+                            self.err(
+                                "E118", "Axes must name axis tags of this program", _init_span(item)
+                            )
                     if not 2 <= len(value.items) <= 3:
                         self.err("E118", "a coordinate system has 2 or 3 axes", value.span)
                     continue
@@ -360,12 +395,18 @@ class Checker(LadderChecks):
             return
         # a single value
         if isinstance(t, ArrayType):
-            self.err("E118", f"an array of {t.size} needs a list initialiser [..]", _init_span(init))
+            self.err(
+                "E118", f"an array of {t.size} needs a list initialiser [..]", _init_span(init)
+            )
             return
         if isinstance(t, StructType):
             if t.is_string and isinstance(init, n.Literal) and init.type == "STRING":
                 return
-            self.err("E118", f"a {t.name} needs a structure initialiser (member := value)", _init_span(init))
+            self.err(
+                "E118",
+                f"a {t.name} needs a structure initialiser (member := value)",
+                _init_span(init),
+            )
             return
         if isinstance(init, n.Literal) and init.type == "STRING":
             self.err("E116", f"a STRING cannot initialise a {t}", init.span)
@@ -379,7 +420,9 @@ class Checker(LadderChecks):
         cam = self.model.types.get("CAM")
         assert cam is not None
         if len(init.items) > t.size:
-            self.err("E118", f"{len(init.items)} cam points given for a profile of {t.size}", init.span)
+            self.err(
+                "E118", f"{len(init.items)} cam points given for a profile of {t.size}", init.span
+            )
             return
         if len(init.items) < 2:
             self.err("E118", "a cam profile needs at least 2 points", init.span)
@@ -396,7 +439,11 @@ class Checker(LadderChecks):
                 return
         for k, (_, _, seg) in enumerate(points[:-1]):
             if seg not in (0, 1):
-                self.err("E118", "cam point SegmentType must be 0 (linear) or 1 (cubic)", _init_span(init.items[k]))
+                self.err(
+                    "E118",
+                    "cam point SegmentType must be 0 (linear) or 1 (cubic)",
+                    _init_span(init.items[k]),
+                )
                 return
 
     # ------------------------------------------------------------ statements
@@ -483,7 +530,12 @@ class Checker(LadderChecks):
         vt = self.expr(s.value)
         if _text(s.target).upper() in self.for_vars:
             self.a.diags.append(
-                diag("W201", f"FOR index '{_text(s.target)}' is assigned inside its loop", self.path, s.target.span)
+                diag(
+                    "W201",
+                    f"FOR index '{_text(s.target)}' is assigned inside its loop",
+                    self.path,
+                    s.target.span,
+                )
             )
         if tt is None or vt is None:
             return
@@ -533,8 +585,13 @@ class Checker(LadderChecks):
         self.instruction(i, i.name, i.name_span, i.span, i.operands, None)
 
     def instruction(
-        self, node: n.Call | n.LadderInstr, name: str, name_span: n.Span, span: n.Span,
-        args: list[n.Expr], named: n.Arg | None,
+        self,
+        node: n.Call | n.LadderInstr,
+        name: str,
+        name_span: n.Span,
+        span: n.Span,
+        args: list[n.Expr],
+        named: n.Arg | None,
     ) -> None:
         """An instruction call, ST statement or ladder element alike: catalog entry and operands."""
         plan = self.plan(name)
@@ -542,10 +599,16 @@ class Checker(LadderChecks):
         if ins is None:
             other = self.cat.instruction_any(name)
             if other is not None:
-                self.err("E126", f"{name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}", name_span)
+                self.err(
+                    "E126",
+                    f"{name} is not available in {'Structured Text' if self.language == 'st' else 'ladder'}",
+                    name_span,
+                )
             else:
                 names = sorted({i.name for i in self.cat.instructions})
-                self.err("E103", f"unknown instruction '{name}'{self.suggest(name, names)}", name_span)
+                self.err(
+                    "E103", f"unknown instruction '{name}'{self.suggest(name, names)}", name_span
+                )
             for e in args:
                 self.expr(e)
             return
@@ -563,7 +626,12 @@ class Checker(LadderChecks):
             self.require_implementation(ins, name_span)
         if ins.transitional and self.language == "st" and self.guard_depth == 0:
             self.a.diags.append(
-                diag("W204", f"{ins.name} runs every scan here: guard it with IF or an edge", self.path, span)
+                diag(
+                    "W204",
+                    f"{ins.name} runs every scan here: guard it with IF or an edge",
+                    self.path,
+                    span,
+                )
             )
 
     def plan(self, name: str) -> _Plan:
@@ -590,17 +658,27 @@ class Checker(LadderChecks):
         fb = FBCall(ins, inst, [], [])
         for a in c.args:
             if isinstance(a.value, n.Placeholder):
-                self.err("E128", f"function block call '{c.name}': an empty parameter is not allowed; give parameters by name", a.span)
+                self.err(
+                    "E128",
+                    f"function block call '{c.name}': an empty parameter is not allowed; give parameters by name",
+                    a.span,
+                )
                 continue
             if a.name is None:
-                self.err("E130", "function block parameters are given by name (Name := value)", a.span)
+                self.err(
+                    "E130", "function block parameters are given by name (Name := value)", a.span
+                )
                 continue
             out = a.name.endswith("=>")
             mname = a.name[:-2] if out else a.name
             m = st.member(mname)
             if m is None:
                 names = [x for x, _ in st.members]
-                self.err("E102", f"'{st.name}' has no parameter '{mname}'{self.suggest(mname, names)}", a.span)
+                self.err(
+                    "E102",
+                    f"'{st.name}' has no parameter '{mname}'{self.suggest(mname, names)}",
+                    a.span,
+                )
                 self.expr(a.value)
                 continue
             if out:
@@ -622,18 +700,28 @@ class Checker(LadderChecks):
         for p, e in zip(aoi.required, args[1:], strict=False):  # type: ignore[attr-defined]
             t = self.a.type_of.get(id(e))
             if p.usage == "InOut" and t is not None and not same_shape(t, p.type):
-                self.err("E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span)  # type: ignore[attr-defined]
+                self.err(
+                    "E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span
+                )  # type: ignore[attr-defined]
 
-    def require_implementation(self, ins: Instruction, span: n.Span, language: str | None = None) -> None:
+    def require_implementation(
+        self, ins: Instruction, span: n.Span, language: str | None = None
+    ) -> None:
         if unimplemented(ins, language or self.language):
-            self.err("U304", f"{ins.name} is recognised but this version cannot execute it yet", span)
+            self.err(
+                "U304", f"{ins.name} is recognised but this version cannot execute it yet", span
+            )
 
     def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
         ops, checks, required = ins.operands, plan.checks, plan.required
         given, known = len(args), len(ops)
         if given < required or (given > known and not ins.variadic):
             expect = f"{required}" if required == known else f"{required} to {known}"
-            self.err("E104", f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {given} given", span)
+            self.err(
+                "E104",
+                f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {given} given",
+                span,
+            )
             for e in args:
                 self.expr(e)
             return
@@ -653,7 +741,9 @@ class Checker(LadderChecks):
         if ins.family == "compare" and given >= 2:
             self.compare_kinds(ins, args)
         if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
-            self.err("E112", "the master axis must be a different axis from the slave", args[1].span)
+            self.err(
+                "E112", "the master axis must be a different axis from the slave", args[1].span
+            )
         if ins.name in ("GSV", "SSV") and given >= 3:
             self.system_attribute(ins, args)
 
@@ -677,13 +767,21 @@ class Checker(LadderChecks):
         c, a = attribute_names(cls, attr)
         if unsupported(c, a, write=ins.name == "SSV"):
             what = "set" if ins.name == "SSV" else "read"
-            self.err("U303", f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller", args[2].span)
+            self.err(
+                "U303",
+                f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller",
+                args[2].span,
+            )
 
     def operand(self, ins: Instruction, check: _OperandCheck, e: n.Expr) -> None:
         op = check.op
         if isinstance(e, n.Placeholder):
             if not op.placeholder:
-                what = "cannot be left empty" if self.language == "st" else "needs a value here, not a placeholder"
+                what = (
+                    "cannot be left empty"
+                    if self.language == "st"
+                    else "needs a value here, not a placeholder"
+                )
                 self.err("E128", f"{ins.name} operand {op.name} {what}", e.span)
             return
         if check.special:
@@ -695,7 +793,9 @@ class Checker(LadderChecks):
         t = self.expr(e)
         is_tag = isinstance(e, LVALUES) and id(e) not in self.a.enum_of
         if check.memory and isinstance(e, BITS):
-            self.err("E106", f"{ins.name} operand {op.name} must be a tag or element, not a bit", e.span)
+            self.err(
+                "E106", f"{ins.name} operand {op.name} must be a tag or element, not a bit", e.span
+            )
             return
         if check.tag and not is_tag:
             self.err("E106", f"{ins.name} operand {op.name} must be a tag", e.span)
@@ -708,25 +808,40 @@ class Checker(LadderChecks):
             return
         if t is None:
             return
-        if not (t.name in check.elementary if isinstance(t, Elementary) else type_matches(t, op.types)):
+        if not (
+            t.name in check.elementary if isinstance(t, Elementary) else type_matches(t, op.types)
+        ):
             if int_literal_for_real(e, t, op.types):
                 return  # SPEC 9.15: integer literals are accepted for REAL operands
             if any(x == "AXIS" for x in op.types) or is_axis(t):
                 self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)
             else:
-                self.err("E105", f"{ins.name} operand {op.name} does not accept {t} (accepts {', '.join(op.types)})", e.span)
+                self.err(
+                    "E105",
+                    f"{ins.name} operand {op.name} does not accept {t} (accepts {', '.join(op.types)})",
+                    e.span,
+                )
             return
         if isinstance(t, StructType) and t.name == "MOTION_INSTRUCTION":
             key = _text(e).upper()
             if key in self.motion_uses:
                 self.a.diags.append(
-                    diag("W203", f"{_text(e)} is also the control tag of another instruction (line {self.motion_uses[key]})", self.path, e.span)
+                    diag(
+                        "W203",
+                        f"{_text(e)} is also the control tag of another instruction (line {self.motion_uses[key]})",
+                        self.path,
+                        e.span,
+                    )
                 )
             else:
                 self.motion_uses[key] = e.span.line
 
     def expression_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
-        self.err("E106", f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)", e.span)
+        self.err(
+            "E106",
+            f"{ins.name} operand {op.name} takes a tag or a literal, not an expression (only CMP, CPT, FAL and FSC compute)",
+            e.span,
+        )
         self.expr(e)
 
     def special_operand(self, ins: Instruction, check: _OperandCheck, e: n.Expr) -> bool:
@@ -743,12 +858,23 @@ class Checker(LadderChecks):
             if not isinstance(e, n.Name):
                 self.err("E124", "JSR needs a routine name", e.span)
             elif self.model.routine(e.ident, self.scope) is None:
-                names = [r.name for r in self.model.routines if self.scope is None or r.program_name == self.scope]
-                self.err("E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
+                names = [
+                    r.name
+                    for r in self.model.routines
+                    if self.scope is None or r.program_name == self.scope
+                ]
+                self.err(
+                    "E124", f"no routine named '{e.ident}'{self.suggest(e.ident, names)}", e.span
+                )
             return True
         if fmt == "label":
             return True
-        if ins.name in ("GSV", "SSV") and op.name == "InstanceName" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
+        if (
+            ins.name in ("GSV", "SSV")
+            and op.name == "InstanceName"
+            and isinstance(e, n.Name)
+            and self.lookup(e.ident) is None
+        ):
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
             self.a.type_of[id(e)] = DINT
             return True
@@ -765,13 +891,27 @@ class Checker(LadderChecks):
         bt = self.a.type_of.get(id(base)) if isinstance(e, n.Index) else t
         if not isinstance(bt, ArrayType):
             if t is not None:
-                self.err("E105", f"{ins.name} operand {op.name} needs an array tag, not {t}", e.span)
+                self.err(
+                    "E105", f"{ins.name} operand {op.name} needs an array tag, not {t}", e.span
+                )
             return
-        if isinstance(bt.elem, StructType) and bt.elem.name == "CAM_PROFILE" and isinstance(e, n.Index):
+        if (
+            isinstance(bt.elem, StructType)
+            and bt.elem.name == "CAM_PROFILE"
+            and isinstance(e, n.Index)
+        ):
             if any(const_number(i) != 0 for i in e.indices):
-                self.err("E111", f"{ins.name} operand {op.name}: a CAM_PROFILE array is given as element [0]", e.span)
+                self.err(
+                    "E111",
+                    f"{ins.name} operand {op.name}: a CAM_PROFILE array is given as element [0]",
+                    e.span,
+                )
         if not type_matches(bt.elem, op.types):
-            self.err("E105", f"{ins.name} operand {op.name} does not accept {bt} (accepts {', '.join(op.types)})", e.span)
+            self.err(
+                "E105",
+                f"{ins.name} operand {op.name} does not accept {bt} (accepts {', '.join(op.types)})",
+                e.span,
+            )
 
     def enum_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> bool:
         """Resolve enumeration text or number; True when `e` was handled as an enumeration."""
@@ -779,12 +919,20 @@ class Checker(LadderChecks):
         en = self.cat.enum(op.enum)
         text = _enum_text(e)
         if text is not None:
-            if isinstance(e, n.Name) and self.lookup(e.ident) is not None and en.lookup(text) is None:
+            if (
+                isinstance(e, n.Name)
+                and self.lookup(e.ident) is not None
+                and en.lookup(text) is None
+            ):
                 return False  # a tag, checked as a value below
             v = en.lookup(text)
             if v is None:
                 labels = [x.label for x in en.values]
-                self.err("E108", f"'{text}' is not a value of {ins.name} {op.name}{self.suggest(text.lower(), labels)}", e.span)
+                self.err(
+                    "E108",
+                    f"'{text}' is not a value of {ins.name} {op.name}{self.suggest(text.lower(), labels)}",
+                    e.span,
+                )
             else:
                 self.a.enum_of[id(e)] = v.value
                 self.a.type_of[id(e)] = DINT
@@ -805,7 +953,10 @@ class Checker(LadderChecks):
         close = difflib.get_close_matches(word, options, n=1, cutoff=0.6)
         if not close:
             lowered = {o.lower(): o for o in options}
-            close = [lowered[x] for x in difflib.get_close_matches(word.lower(), list(lowered), n=1, cutoff=0.6)]
+            close = [
+                lowered[x]
+                for x in difflib.get_close_matches(word.lower(), list(lowered), n=1, cutoff=0.6)
+            ]
         return f" (did you mean '{close[0]}'?)" if close else ""
 
     # ------------------------------------------------------------ expressions
@@ -827,7 +978,9 @@ class Checker(LadderChecks):
         bt = self.expr(e.base)
         for i in e.indices:
             it = self.expr(i)
-            if it is not None and not (isinstance(it, Elementary) and (it.is_integer or it.is_bool)):
+            if it is not None and not (
+                isinstance(it, Elementary) and (it.is_integer or it.is_bool)
+            ):
                 self.err("E121", f"a subscript must be an integer, not {it}", i.span)
         if bt is None:
             return None
@@ -835,7 +988,11 @@ class Checker(LadderChecks):
             self.err("E110", f"{_text(e.base)} is not an array", e.span)
             return None
         if len(e.indices) != len(bt.dims):
-            self.err("E110", f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given", e.span)
+            self.err(
+                "E110",
+                f"{_text(e.base)} has {len(bt.dims)} dimension(s), {len(e.indices)} subscript(s) given",
+                e.span,
+            )
             return None
         for i, size in zip(e.indices, bt.dims, strict=True):
             v = const_number(i)
@@ -872,7 +1029,11 @@ class Checker(LadderChecks):
         if t is None:
             return None
         if not isinstance(t, Elementary):
-            self.err("E116" if isinstance(t, StructType) and t.is_string else "E121", f"{e.op} cannot be applied to {t}", e.span)
+            self.err(
+                "E116" if isinstance(t, StructType) and t.is_string else "E121",
+                f"{e.op} cannot be applied to {t}",
+                e.span,
+            )
             return None
         if e.op == "NOT":
             if t.is_real:
@@ -905,7 +1066,11 @@ class Checker(LadderChecks):
         i = bt.index.get(key)  # StructType.member, without upper-casing the name twice
         if i is None or key in bt.hidden:
             names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
-            self.err("E102", f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}", e.name_span)
+            self.err(
+                "E102",
+                f"'{bt.name}' has no member '{e.name}'{self.suggest(e.name, names)}",
+                e.name_span,
+            )
             return None
         return bt.members[i][1]
 
@@ -925,7 +1090,11 @@ class Checker(LadderChecks):
         if tag is None:
             pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
             names = [t.name for t in pool]
-            self.err("E101", f"undefined tag '{e.ident}'{module_tag_note(self.model, e.ident) or self.suggest(e.ident, names)}", e.span)
+            self.err(
+                "E101",
+                f"undefined tag '{e.ident}'{module_tag_note(self.model, e.ident) or self.suggest(e.ident, names)}",
+                e.span,
+            )
             return None
         self.a.tag_of[id(e)] = tag
         return tag.type
@@ -940,7 +1109,13 @@ class Checker(LadderChecks):
         if l_str or r_str:
             if l_str and r_str and e.op in ("=", "<>", "<", "<=", ">", ">="):
                 return BOOL
-            self.err("E116", f"'{e.op}' cannot mix STRING and numbers" if l_str != r_str else f"'{e.op}' is not defined for STRING", e.span)
+            self.err(
+                "E116",
+                f"'{e.op}' cannot mix STRING and numbers"
+                if l_str != r_str
+                else f"'{e.op}' is not defined for STRING",
+                e.span,
+            )
             return None
         if not isinstance(lt, Elementary) or not isinstance(rt, Elementary):
             bad = lt if not isinstance(lt, Elementary) else rt
@@ -981,15 +1156,25 @@ class Checker(LadderChecks):
             for a in c.args:
                 self.expr(a.value)
             if ins is not None:
-                self.err("E126", f"{ins.name} is an instruction: call it as a statement", c.name_span)
+                self.err(
+                    "E126", f"{ins.name} is an instruction: call it as a statement", c.name_span
+                )
             else:
                 fnames = sorted({i.name for i in self.cat.instructions if i.kind == "function"})
-                self.err("E103", f"unknown function '{c.name}'{self.suggest(c.name.upper(), fnames)}", c.name_span)
+                self.err(
+                    "E103",
+                    f"unknown function '{c.name}'{self.suggest(c.name.upper(), fnames)}",
+                    c.name_span,
+                )
             return None
         self.a.call_of[id(c)] = ins
         self.require_implementation(ins, c.name_span, "st")  # functions are ST entries, in CPT too
         if len(c.args) != len(ins.operands):
-            self.err("E104", f"{ins.name} takes {len(ins.operands)} argument(s), {len(c.args)} given", c.span)
+            self.err(
+                "E104",
+                f"{ins.name} takes {len(ins.operands)} argument(s), {len(c.args)} given",
+                c.span,
+            )
             return None
         t = self.expr(c.args[0].value)
         if t is None:

@@ -31,7 +31,11 @@ class LadderChecks:
         self.jumps_seen = False
         for rung in rungs:
             if not rung.elements:
-                self.err("E129", f"rung {rung.number} is empty: give it at least one instruction (NOP)", rung.span)
+                self.err(
+                    "E129",
+                    f"rung {rung.number} is empty: give it at least one instruction (NOP)",
+                    rung.span,
+                )
             self.sequence(rung.elements, feeds=False)
         if self.jumps_seen:  # most routines have no label: spare them a second walk
             self.labels(rungs)
@@ -53,10 +57,18 @@ class LadderChecks:
                 if name == "JMP":
                     jumps.append((e.ident, e))
                 elif e.ident.upper() in defined:
-                    self.err("E131", f"label '{e.ident}' is already defined on rung {defined[e.ident.upper()]}", e.span)
+                    self.err(
+                        "E131",
+                        f"label '{e.ident}' is already defined on rung {defined[e.ident.upper()]}",
+                        e.span,
+                    )
                 else:
                     if k != 0 or not isinstance(rung.elements[0], n.LadderInstr):
-                        self.err("E131", f"LBL({e.ident}) must be the first instruction of its rung", ins.span)
+                        self.err(
+                            "E131",
+                            f"LBL({e.ident}) must be the first instruction of its rung",
+                            ins.span,
+                        )
                     defined[e.ident.upper()] = rung.number  # known either way: one error, not two
         for label, e in jumps:
             if label.upper() not in defined:
@@ -85,12 +97,15 @@ class LadderChecks:
         # a leg that is always true only through a shorted branch inside it was reported there
         bare = [i for i, c in enumerate(conditional) if not c and not inner[i]]
         if bare and any(conditional):
-            self.a.diags.append(diag(
-                "W202",
-                f"leg {bare[0] + 1} of this branch has no input instruction: it is always true and "
-                "shorts the conditions of the other legs",
-                self.path, b.span,
-            ))
+            self.a.diags.append(
+                diag(
+                    "W202",
+                    f"leg {bare[0] + 1} of this branch has no input instruction: it is always true and "
+                    "shorts the conditions of the other legs",
+                    self.path,
+                    b.span,
+                )
+            )
             return True
         return any(inner)
 

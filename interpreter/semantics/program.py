@@ -65,7 +65,7 @@ def scoped_programs(tags: dict[str, Tag]) -> set[str]:
     programs: set[str] = set()
     for key in tags:
         if key.startswith("PROGRAM:"):
-            rest = key[len("PROGRAM:"):]
+            rest = key[len("PROGRAM:") :]
             dot = rest.find(".")
             while dot >= 0:
                 programs.add(rest[:dot])
@@ -93,7 +93,9 @@ class ProgramModel:
         key = name.upper()
         scoped = program is not None and bool(self.programs)
         for r in self.routines:
-            if r.name.upper() == key and (not scoped or (r.program_name or "").upper() == program.upper()):  # type: ignore[union-attr]
+            if r.name.upper() == key and (
+                not scoped or (r.program_name or "").upper() == program.upper()
+            ):  # type: ignore[union-attr]
                 return r
         return None
 
@@ -130,7 +132,9 @@ def const_number(e: object) -> int | float | None:
     return None
 
 
-def resolve_typeref(types: TypeTable, ref: n.TypeRef, path: str, diags: list[Diagnostic]) -> DataType | None:
+def resolve_typeref(
+    types: TypeTable, ref: n.TypeRef, path: str, diags: list[Diagnostic]
+) -> DataType | None:
     base = types.get(ref.name)
     if base is None:
         diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
@@ -138,7 +142,9 @@ def resolve_typeref(types: TypeTable, ref: n.TypeRef, path: str, diags: list[Dia
     if not ref.dims:
         return base
     if len(ref.dims) > MAX_DIMS:
-        diags.append(diag("E125", f"at most {MAX_DIMS} array dimensions are allowed", path, ref.span))
+        diags.append(
+            diag("E125", f"at most {MAX_DIMS} array dimensions are allowed", path, ref.span)
+        )
         return None
     sizes = []
     for lo, hi in ref.dims:
@@ -146,13 +152,17 @@ def resolve_typeref(types: TypeTable, ref: n.TypeRef, path: str, diags: list[Dia
             diags.append(diag("E125", f"Logix arrays start at 0, not {lo}", path, ref.span))
             return None
         if hi < lo:
-            diags.append(diag("E125", "array dimension must hold at least one element", path, ref.span))
+            diags.append(
+                diag("E125", "array dimension must hold at least one element", path, ref.span)
+            )
             return None
         sizes.append(hi - lo + 1)
     return ArrayType(base, tuple(sizes))
 
 
-def declare_types(types: TypeTable, decls: list[tuple[n.TypeDecl, str]], diags: list[Diagnostic]) -> list[tuple[n.TypeDecl, StructType, str]]:
+def declare_types(
+    types: TypeTable, decls: list[tuple[n.TypeDecl, str]], diags: list[Diagnostic]
+) -> list[tuple[n.TypeDecl, StructType, str]]:
     """Declare UDT names (first pass, so members may name UDTs declared later)."""
     udts: list[tuple[n.TypeDecl, StructType, str]] = []
     for td, path in decls:
@@ -167,7 +177,9 @@ def declare_types(types: TypeTable, decls: list[tuple[n.TypeDecl, str]], diags: 
     return udts
 
 
-def define_members(types: TypeTable, udts: list[tuple[n.TypeDecl, StructType, str]], diags: list[Diagnostic]) -> None:
+def define_members(
+    types: TypeTable, udts: list[tuple[n.TypeDecl, StructType, str]], diags: list[Diagnostic]
+) -> None:
     """Second pass: resolve every member type and default."""
     for td, st, path in udts:
         for m in td.members:
@@ -180,12 +192,20 @@ def define_members(types: TypeTable, udts: list[tuple[n.TypeDecl, StructType, st
                     if m.init is not None:
                         value = const_number(m.init)
                         if value is None:
-                            diags.append(diag("E118", "a member default must be a number", path, m.span))
+                            diags.append(
+                                diag("E118", "a member default must be a number", path, m.span)
+                            )
                         else:
                             st.defaults[mname.upper()] = value
 
 
-def declare_tags(model: ProgramModel, decls: list[n.VarDecl], path: str, diags: list[Diagnostic], program: str | None = None) -> None:
+def declare_tags(
+    model: ProgramModel,
+    decls: list[n.VarDecl],
+    path: str,
+    diags: list[Diagnostic],
+    program: str | None = None,
+) -> None:
     """Add tags to the model; program tags are keyed `PROGRAM:P.NAME` (see scope_key)."""
     types = model.types
     for d in decls:
@@ -194,10 +214,19 @@ def declare_tags(model: ProgramModel, decls: list[n.VarDecl], path: str, diags: 
             key = scope_key(program, tname) if program is not None else tname.upper()
             if key in model.tags:
                 prev = model.tags[key]
-                diags.append(diag("E117", f"tag '{tname}' is already declared at line {prev.span.line}", path, tspan))
+                diags.append(
+                    diag(
+                        "E117",
+                        f"tag '{tname}' is already declared at line {prev.span.line}",
+                        path,
+                        tspan,
+                    )
+                )
                 continue
             if t is not None:
-                model.tags[key] = Tag(tname, t, tspan, path, d.init, program=program, init_path=path)
+                model.tags[key] = Tag(
+                    tname, t, tspan, path, d.init, program=program, init_path=path
+                )
 
 
 def build_program(

@@ -21,7 +21,9 @@ from .program import (
 from .types import ArrayType, DataType, StructType, TypeTable
 
 
-def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[ProgramModel, list[Diagnostic]]:
+def build_project(
+    project: L5XProject, types: TypeTable | None = None
+) -> tuple[ProgramModel, list[Diagnostic]]:
     types = types or TypeTable()
     path = project.path
     diags: list[Diagnostic] = []
@@ -30,7 +32,9 @@ def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[
     model.extra["l5x"] = project
     model.extra["modules"] = project.modules
     udts = declare_types(types, [(td, path) for td in project.types], diags)
-    aoi_types = declare_types(types, [(n.TypeDecl(a.name, [], a.span, a.span), path) for a in project.aois], diags)
+    aoi_types = declare_types(
+        types, [(n.TypeDecl(a.name, [], a.span, a.span), path) for a in project.aois], diags
+    )
     define_members(types, udts, diags)
     declared = {st.name.upper(): st for _, st, _ in aoi_types}
     for a in project.aois:
@@ -48,11 +52,25 @@ def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[
         _prune_inits(p.tags, types)
         declare_tags(model, p.tags, path, diags, program=p.name)
         if p.main and model.routine(p.main, p.name) is None:
-            diags.append(diag("E124", f"program '{p.name}' names main routine '{p.main}', which it does not have", path, p.span))
+            diags.append(
+                diag(
+                    "E124",
+                    f"program '{p.name}' names main routine '{p.main}', which it does not have",
+                    path,
+                    p.span,
+                )
+            )
         seen: set[str] = set()
         for r in p.routines:
             if r.name.upper() in seen:
-                diags.append(diag("E117", f"routine '{r.name}' is declared twice in program '{p.name}'", path, r.span))
+                diags.append(
+                    diag(
+                        "E117",
+                        f"routine '{r.name}' is declared twice in program '{p.name}'",
+                        path,
+                        r.span,
+                    )
+                )
             seen.add(r.name.upper())
     _aliases(model, project.aliases, None, path, diags)
     for p in project.programs:
@@ -61,7 +79,14 @@ def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[
         names = []
         for pname, sp in t.programs:
             if pname.upper() not in model.programs:
-                diags.append(diag("E124", f"task '{t.name}' schedules program '{pname}', which the project does not have", path, sp))
+                diags.append(
+                    diag(
+                        "E124",
+                        f"task '{t.name}' schedules program '{pname}', which the project does not have",
+                        path,
+                        sp,
+                    )
+                )
             else:
                 names.append(model.programs[pname.upper()].name)
         model.tasks.append(TaskInfo(t.name, t.type, t.rate_ms, t.priority, names, t.inhibited))
@@ -73,7 +98,9 @@ def build_project(project: L5XProject, types: TypeTable | None = None) -> tuple[
     return model, [project.annotate(d) for d in diags]
 
 
-def controller_scope(project: L5XProject, types: TypeTable | None = None) -> tuple[TypeTable, list[n.VarDecl], list[Diagnostic]]:
+def controller_scope(
+    project: L5XProject, types: TypeTable | None = None
+) -> tuple[TypeTable, list[n.VarDecl], list[Diagnostic]]:
     """For `--tags FILE.L5X`: the export's data types (UDTs, AOIs) and controller tags only."""
     types = types or TypeTable()
     diags: list[Diagnostic] = []
@@ -83,22 +110,39 @@ def controller_scope(project: L5XProject, types: TypeTable | None = None) -> tup
     return types, project.tags, diags
 
 
-def _aliases(model: ProgramModel, aliases: list[AliasDecl], program: str | None, path: str, diags: list[Diagnostic]) -> None:
+def _aliases(
+    model: ProgramModel,
+    aliases: list[AliasDecl],
+    program: str | None,
+    path: str,
+    diags: list[Diagnostic],
+) -> None:
     """An alias shares its target's storage: a whole tag, a member or an element with constant
     subscripts. Bit aliases and module I/O targets are reported as not supported."""
     for a in aliases:
         target, t, access = _resolve_alias(model, a.target, program)
         if target is None or t is None:
-            diags.append(diag("U305", f"alias '{a.name}' for '{a.target}' cannot be simulated (bit, module I/O or unknown target)", path, a.span))
+            diags.append(
+                diag(
+                    "U305",
+                    f"alias '{a.name}' for '{a.target}' cannot be simulated (bit, module I/O or unknown target)",
+                    path,
+                    a.span,
+                )
+            )
             continue
         key = scope_key(program, a.name) if program is not None else a.name.upper()
         if key in model.tags:
             diags.append(diag("E117", f"tag '{a.name}' is already declared", path, a.span))
             continue
-        model.tags[key] = Tag(a.name, t, a.span, path, program=program, access=access, alias_of=target)
+        model.tags[key] = Tag(
+            a.name, t, a.span, path, program=program, access=access, alias_of=target
+        )
 
 
-def _resolve_alias(model: ProgramModel, text: str, program: str | None) -> tuple[Tag | None, DataType | None, tuple[int, ...]]:
+def _resolve_alias(
+    model: ProgramModel, text: str, program: str | None
+) -> tuple[Tag | None, DataType | None, tuple[int, ...]]:
     try:
         e = parse_expression(text)
     except ValueError:
@@ -126,7 +170,10 @@ def _resolve_alias(model: ProgramModel, text: str, program: str | None) -> tuple
                 return None, None, ()
             flat = 0
             for i, size in zip(step.indices, t.dims, strict=True):
-                if not (isinstance(i, n.Literal) and isinstance(i.value, int)) or not 0 <= i.value < size:
+                if (
+                    not (isinstance(i, n.Literal) and isinstance(i.value, int))
+                    or not 0 <= i.value < size
+                ):
                     return None, None, ()
                 flat = flat * size + i.value
             access.append(flat)

@@ -147,7 +147,9 @@ class TypeTable:
 
     def get(self, name: str) -> DataType | None:
         key = name.upper()
-        if key == "AXIS":  # axis references in catalog members (COORDINATE_SYSTEM.Axes, MC_CamIn.Master)
+        if (
+            key == "AXIS"
+        ):  # axis references in catalog members (COORDINATE_SYSTEM.Axes, MC_CamIn.Master)
             key = "AXIS_CIP_DRIVE"
         t = self._types.get(key)
         if t is not None:

@@ -82,8 +82,12 @@ class L5XProject:
     tasks: list[TaskDecl] = field(default_factory=list)
     axis_groups: dict[str, str] = field(default_factory=dict)  # axis tag -> motion group tag
     coarse_update_us: float | None = None
-    modules: dict[str, str] = field(default_factory=dict)  # upper I/O tag prefix (`LOCAL:1`) -> module name
-    context: dict[int, str] = field(default_factory=dict)  # file line -> "program P, routine R, rung N"
+    modules: dict[str, str] = field(
+        default_factory=dict
+    )  # upper I/O tag prefix (`LOCAL:1`) -> module name
+    context: dict[int, str] = field(
+        default_factory=dict
+    )  # file line -> "program P, routine R, rung N"
 
     def annotate(self, d: Diagnostic) -> Diagnostic:
         """Name program, routine and rung / ST line in a diagnostic inside a routine."""
@@ -117,12 +121,23 @@ def read_l5x(data: bytes, path: str) -> tuple[L5XProject | None, list[Diagnostic
     try:
         root, pos = parse_xml(data)
     except XmlRejected as exc:
-        return None, [diag("S007", exc.message, path, n.Span(exc.line, exc.col, exc.line, exc.col + 1))]
+        return None, [
+            diag("S007", exc.message, path, n.Span(exc.line, exc.col, exc.line, exc.col + 1))
+        ]
     if root.tag != ROOT:
-        return None, [diag("S007", f"not a Studio 5000 export: the root element is <{root.tag}>, expected <{ROOT}>", path, pos.elem_span(root))]
+        return None, [
+            diag(
+                "S007",
+                f"not a Studio 5000 export: the root element is <{root.tag}>, expected <{ROOT}>",
+                path,
+                pos.elem_span(root),
+            )
+        ]
     ctl = root.child("Controller")
     if ctl is None:
-        return None, [diag("S007", "the export has no <Controller> element", path, pos.elem_span(root))]
+        return None, [
+            diag("S007", "the export has no <Controller> element", path, pos.elem_span(root))
+        ]
     reader = _Reader(path, pos)
     project = reader.read(root, ctl)
     return project, [project.annotate(d) for d in reader.diags]
@@ -187,7 +202,11 @@ class _Reader:
 
     def encoded(self, e: XElem, what: str) -> None:
         name = e.get("Name") or "?"
-        self.err("U302", f"{what} '{name}' is protected (encoded); its content cannot be read", self.span(e))
+        self.err(
+            "U302",
+            f"{what} '{name}' is protected (encoded); its content cannot be read",
+            self.span(e),
+        )
 
     # ------------------------------------------------------------ data types
     def datatype(self, e: XElem) -> None:
@@ -203,17 +222,30 @@ class _Reader:
             if mname is None:
                 continue
             if not dtype:
-                self.err("S007", f"member '{mname}' of '{name}' has no DataType attribute", self.span(m))
+                self.err(
+                    "S007", f"member '{mname}' of '{name}' has no DataType attribute", self.span(m)
+                )
                 continue
             dims = _dims(m.get("Dimension"))
             hidden = m.get("Hidden").lower() == "true"
             bit = int(m.get("BitNumber") or 0) if m.get("BitNumber").isdigit() else 0
-            raw.append(RawMember(mname, dtype.upper(), dims[0] if dims else 0, hidden, m.get("Target"), bit))
+            raw.append(
+                RawMember(
+                    mname, dtype.upper(), dims[0] if dims else 0, hidden, m.get("Target"), bit
+                )
+            )
             if hidden:
                 continue  # the SINT that hosts BOOL members: each BIT member is a BOOL of its own here
             tname = "BOOL" if dtype.upper() == "BIT" else dtype
             sp = self.span(m)
-            decls.append(n.VarDecl([(mname, sp)], n.TypeRef(tname.upper(), [(0, d - 1) for d in dims], sp), None, sp))
+            decls.append(
+                n.VarDecl(
+                    [(mname, sp)],
+                    n.TypeRef(tname.upper(), [(0, d - 1) for d in dims], sp),
+                    None,
+                    sp,
+                )
+            )
         self.udt_raw[name.upper()] = raw
         sp = self.span(e)
         self.project.types.append(n.TypeDecl(name, decls, sp, sp))
@@ -251,7 +283,9 @@ class _Reader:
         init = self.motion_data(e, name, dtype.upper()) if data_tag == "Data" else None
         if init is None:
             init = self.data.tag_init(e, data_tag)
-        return n.VarDecl([(name, sp)], tref, init, sp, block="VAR_GLOBAL" if what == "tag" else "VAR")
+        return n.VarDecl(
+            [(name, sp)], tref, init, sp, block="VAR_GLOBAL" if what == "tag" else "VAR"
+        )
 
     def motion_data(self, e: XElem, name: str, dtype: str) -> n.Init | None:
         """Axis, motion group and coordinate-system tags carry parameters, not decorated data."""
@@ -271,7 +305,9 @@ class _Reader:
                         us = None
                     if us is not None:
                         self.project.coarse_update_us = us
-                        members.append(("CoarseUpdatePeriod", sp, n.Literal(int(us), "DINT", cup, sp)))
+                        members.append(
+                            ("CoarseUpdatePeriod", sp, n.Literal(int(us), "DINT", cup, sp))
+                        )
                 return n.StructInit(members, sp)
             group = params.get("MotionGroup")
             if group and fmt == "Axis":
@@ -286,9 +322,19 @@ class _Reader:
                     continue
                 members.append((member, sp, n.Literal(num, "REAL", value, sp)))
             if fmt == "CoordinateSystem":
-                axes = [a for a in _walk(params) if a.tag in ("Axis", "AxisName", "CoordinateSystemAxis") and a.get("Name")]
+                axes = [
+                    a
+                    for a in _walk(params)
+                    if a.tag in ("Axis", "AxisName", "CoordinateSystemAxis") and a.get("Name")
+                ]
                 if axes:
-                    members.append(("Axes", sp, n.ArrayInit([n.Name(a.get("Name"), self.span(a)) for a in axes], sp)))
+                    members.append(
+                        (
+                            "Axes",
+                            sp,
+                            n.ArrayInit([n.Name(a.get("Name"), self.span(a)) for a in axes], sp),
+                        )
+                    )
             return n.StructInit(members, sp)
         return None
 
@@ -334,7 +380,12 @@ class _Reader:
         name = self.name_of(e, "program")
         if name is None:
             return
-        prog = ProgramDecl(name, self.span(e), e.get("MainRoutineName"), disabled=e.get("Disabled").lower() == "true")
+        prog = ProgramDecl(
+            name,
+            self.span(e),
+            e.get("MainRoutineName"),
+            disabled=e.get("Disabled").lower() == "true",
+        )
         for sec in e.all("Tags"):
             tags, aliases = self.tags(sec)
             prog.tags.extend(tags)
@@ -365,7 +416,9 @@ class _Reader:
             return self.st_routine(e, name, where)
         if kind == "RLL":
             return self.rll_routine(e, name, where)
-        label = {"FBD": "function block diagram", "SFC": "sequential function chart"}.get(kind, kind or "untyped")
+        label = {"FBD": "function block diagram", "SFC": "sequential function chart"}.get(
+            kind, kind or "untyped"
+        )
         self.err("U301", f"{label} routine '{name}' ({owner}) is not supported", self.span(e))
         return n.Routine(name, "unsupported", self.path, span=self.span(e))
 
@@ -443,7 +496,9 @@ class _Reader:
             rate = float(e.get("Rate") or 10.0)
             priority = int(e.get("Priority") or 10)
         except ValueError:
-            self.err("S007", f"task '{name}' has a Rate or Priority that is not a number", self.span(e))
+            self.err(
+                "S007", f"task '{name}' has a Rate or Priority that is not a number", self.span(e)
+            )
             return
         if kind == "PERIODIC" and rate <= 0:
             self.err("S007", f"periodic task '{name}' needs a Rate > 0 ms", self.span(e))
@@ -455,7 +510,9 @@ class _Reader:
                 if pname is not None:
                     progs.append((pname, self.span(sp)))
         inhibited = e.get("InhibitTask").lower() == "true"
-        self.project.tasks.append(TaskDecl(name, kind, rate, priority, progs, inhibited, self.span(e)))
+        self.project.tasks.append(
+            TaskDecl(name, kind, rate, priority, progs, inhibited, self.span(e))
+        )
 
 
 def _walk(e: XElem):  # type: ignore[no-untyped-def]

@@ -17,7 +17,19 @@ from . import nodes as n
 from .literals import parse_number, parse_string
 from .xml_reader import Positions, XElem
 
-ELEMENTARY = {"BOOL", "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "REAL", "LREAL"}
+ELEMENTARY = {
+    "BOOL",
+    "SINT",
+    "INT",
+    "DINT",
+    "LINT",
+    "USINT",
+    "UINT",
+    "UDINT",
+    "ULINT",
+    "REAL",
+    "LREAL",
+}
 
 
 @dataclass(slots=True)
@@ -71,7 +83,9 @@ class DataReader:
         return self.pos.elem_span(e)
 
     def literal(self, e: XElem, value: object, dtype: str, text: str) -> n.Literal:
-        typ = "REAL" if isinstance(value, float) else "STRING" if isinstance(value, bytes) else "DINT"
+        typ = (
+            "REAL" if isinstance(value, float) else "STRING" if isinstance(value, bytes) else "DINT"
+        )
         if dtype in ("LINT", "ULINT", "UDINT") and isinstance(value, int):
             typ = "LINT"
         return n.Literal(value, typ, text, self.span(e))
@@ -92,7 +106,9 @@ class DataReader:
             return self.parameters(alarm.children[0])
         l5k = by_format.get("L5K")
         if l5k is not None and l5k.text.strip():
-            return self.l5k(l5k, tag.get("DataType"), _dims(tag.get("Dimensions") or tag.get("Dimension")))
+            return self.l5k(
+                l5k, tag.get("DataType"), _dims(tag.get("Dimensions") or tag.get("Dimension"))
+            )
         return None
 
     def parameters(self, e: XElem) -> n.StructInit:
@@ -102,9 +118,21 @@ class DataReader:
         members: list[tuple[str, n.Span, n.Init]] = []
         for name, text in e.attrs.items():
             low = text.strip().lower()
-            value: int | float | None = (1 if low == "true" else 0) if low in ("true", "false") else _l5k_number(text.strip())
+            value: int | float | None = (
+                (1 if low == "true" else 0)
+                if low in ("true", "false")
+                else _l5k_number(text.strip())
+            )
             if value is not None:
-                members.append((name, span, n.Literal(value, "REAL" if isinstance(value, float) else "DINT", text, span)))
+                members.append(
+                    (
+                        name,
+                        span,
+                        n.Literal(
+                            value, "REAL" if isinstance(value, float) else "DINT", text, span
+                        ),
+                    )
+                )
         return n.StructInit(members, span)
 
     # ------------------------------------------------------------ decorated
@@ -112,7 +140,12 @@ class DataReader:
         tag = e.tag
         if tag in ("DataValue", "DataValueMember"):
             dtype = e.get("DataType").upper()
-            if dtype == "STRING" or e.get("Radix") == "ASCII" and e.text_offset >= 0 and not e.get("Value"):
+            if (
+                dtype == "STRING"
+                or e.get("Radix") == "ASCII"
+                and e.text_offset >= 0
+                and not e.get("Value")
+            ):
                 return self.string_literal(e)
             text = e.get("Value")
             value = parse_value(text, e.get("Radix"), dtype)
@@ -170,7 +203,9 @@ class DataReader:
             value = parse_string(raw)
         else:
             value = raw.encode("latin-1", "replace")
-        span = self.pos.span(e.text_offset, max(1, len(raw))) if e.text_offset >= 0 else self.span(e)
+        span = (
+            self.pos.span(e.text_offset, max(1, len(raw))) if e.text_offset >= 0 else self.span(e)
+        )
         return n.Literal(value, "STRING", raw, span)
 
     # ------------------------------------------------------------ L5K
@@ -182,7 +217,9 @@ class DataReader:
         span = self.pos.span(e.text_offset) if e.text_offset >= 0 else self.span(e)
         return self._from_l5k(tree, dtype.upper(), dims, span)
 
-    def _from_l5k(self, v: object, dtype: str, dims: tuple[int, ...], span: n.Span) -> n.Init | None:
+    def _from_l5k(
+        self, v: object, dtype: str, dims: tuple[int, ...], span: n.Span
+    ) -> n.Init | None:
         if dims:
             if not isinstance(v, list):
                 return None
@@ -195,14 +232,17 @@ class DataReader:
             if layout is not None and len(v) == 3 and all(isinstance(x, int) for x in v):
                 word_bits, names = layout
                 members: list[tuple[str, n.Span, n.Init]] = [
-                    (name, span, n.Literal(v[i + 1], "DINT", str(v[i + 1]), span)) for i, name in enumerate(names)
+                    (name, span, n.Literal(v[i + 1], "DINT", str(v[i + 1]), span))
+                    for i, name in enumerate(names)
                 ]
                 for bname, bit in word_bits:
                     bitval = (int(v[0]) >> bit) & 1
                     members.append((bname, span, n.Literal(bitval, "DINT", str(bitval), span)))
                 return n.StructInit(members, span)
             if dtype == "STRING" and len(v) == 2 and isinstance(v[1], bytes):
-                return n.Literal(v[1][: max(0, int(v[0]))] if isinstance(v[0], int) else v[1], "STRING", "", span)
+                return n.Literal(
+                    v[1][: max(0, int(v[0]))] if isinstance(v[0], int) else v[1], "STRING", "", span
+                )
             return None  # predefined layouts other than the packed ones keep their defaults
         if isinstance(v, bytes):
             return n.Literal(v, "STRING", "", span)
@@ -237,7 +277,19 @@ class DataReader:
 _PACKED: dict[str, tuple[tuple[tuple[str, int], ...], tuple[str, str]]] = {
     "TIMER": ((("EN", 31), ("TT", 30), ("DN", 29)), ("PRE", "ACC")),
     "COUNTER": ((("CU", 31), ("CD", 30), ("DN", 29), ("OV", 28), ("UN", 27)), ("PRE", "ACC")),
-    "CONTROL": ((("EN", 31), ("EU", 30), ("DN", 29), ("EM", 28), ("ER", 27), ("UL", 26), ("IN", 25), ("FD", 24)), ("LEN", "POS")),
+    "CONTROL": (
+        (
+            ("EN", 31),
+            ("EU", 30),
+            ("DN", 29),
+            ("EM", 28),
+            ("ER", 27),
+            ("UL", 26),
+            ("IN", 25),
+            ("FD", 24),
+        ),
+        ("LEN", "POS"),
+    ),
 }
 
 

@@ -36,7 +36,9 @@ class ModuleTags:
 
     types: list[n.TypeDecl] = field(default_factory=list)
     tags: list[n.VarDecl] = field(default_factory=list)
-    modules: dict[str, str] = field(default_factory=dict)  # upper tag prefix (`LOCAL:1`) -> module name
+    modules: dict[str, str] = field(
+        default_factory=dict
+    )  # upper tag prefix (`LOCAL:1`) -> module name
 
 
 class ModuleReader:
@@ -65,7 +67,12 @@ class ModuleReader:
             if p.get("Upstream").lower() != "true":
                 continue
             addr = p.get("Address").strip()
-            if p.get("Type").strip().upper() not in NETWORK_PORTS and addr.isdigit() and parent and parent != name:
+            if (
+                p.get("Type").strip().upper() not in NETWORK_PORTS
+                and addr.isdigit()
+                and parent
+                and parent != name
+            ):
                 return f"{parent}:{int(addr)}"
         return name
 
@@ -81,7 +88,10 @@ class ModuleReader:
             self.io_tag(config, f"{prefix}:C")
         for conns in comms.all("Connections"):
             for c in conns.all("Connection"):
-                for tag_elem, attr, default in (("InputTag", "InputTagSuffix", "I"), ("OutputTag", "OutputTagSuffix", "O")):
+                for tag_elem, attr, default in (
+                    ("InputTag", "InputTagSuffix", "I"),
+                    ("OutputTag", "OutputTagSuffix", "O"),
+                ):
                     e = c.child(tag_elem)
                     if e is not None:
                         self.io_tag(e, f"{prefix}:{c.get(attr).strip() or default}")
@@ -90,7 +100,9 @@ class ModuleReader:
         key = tag.upper()
         if key in self._tag_names:
             return  # a second connection with the same suffix: Studio keeps one tag
-        deco = next((d for d in e.all("Data") if d.get("Format") == "Decorated" and d.children), None)
+        deco = next(
+            (d for d in e.all("Data") if d.get("Format") == "Decorated" and d.children), None
+        )
         if deco is None:
             return
         top = deco.children[0]
@@ -100,7 +112,9 @@ class ModuleReader:
         self._tag_names.add(key)
         sp = self.span(e)
         tref = n.TypeRef(tref.name, tref.dims, sp)
-        self.out.tags.append(n.VarDecl([(tag, sp)], tref, self.data.decorated(top), sp, block="VAR_GLOBAL"))
+        self.out.tags.append(
+            n.VarDecl([(tag, sp)], tref, self.data.decorated(top), sp, block="VAR_GLOBAL")
+        )
 
     # ------------------------------------------------------------ module-defined types
     def type_of(self, e: XElem) -> n.TypeRef | None:

@@ -105,7 +105,19 @@ class Placeholder:
     span: Span
 
 
-Expr = Literal | Name | Member | Index | Bit | IndirectBit | Unary | Binary | Call | EnumText | Placeholder
+Expr = (
+    Literal
+    | Name
+    | Member
+    | Index
+    | Bit
+    | IndirectBit
+    | Unary
+    | Binary
+    | Call
+    | EnumText
+    | Placeholder
+)
 
 
 @dataclass(slots=True)

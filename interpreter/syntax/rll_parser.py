@@ -42,7 +42,9 @@ class RllBuilder(AstBuilder):
     rung_only = rung_line
 
     def rung_comment(self, c: list) -> n.Comment:
-        text = "".join(decode_text(str(t)) for t in c if isinstance(t, Token) and t.type == "STRING_LIT")
+        text = "".join(
+            decode_text(str(t)) for t in c if isinstance(t, Token) and t.type == "STRING_LIT"
+        )
         return n.Comment(text, _extent(c))
 
     def rung(self, c: list) -> list[n.LadderElement]:
@@ -114,8 +116,12 @@ def _flat(c: list) -> list:
 @cache
 def _parser() -> Lark:
     return Lark.open(
-        str(Path(__file__).with_name("rll.lark")), parser="lalr", lexer="contextual",
-        transformer=RllBuilder(), maybe_placeholders=True, start=["rung_line", "rung_only"],
+        str(Path(__file__).with_name("rll.lark")),
+        parser="lalr",
+        lexer="contextual",
+        transformer=RllBuilder(),
+        maybe_placeholders=True,
+        start=["rung_line", "rung_only"],
         cache=grammar_cache("rll"),
     )
 
@@ -204,8 +210,14 @@ def _string_end(text: str, i: int) -> tuple[int, bool]:
 
 _END = {"$END", "<END-OF-FILE>"}
 _FRIENDLY = {
-    "LSQB": "'['", "RSQB": "']'", "COMMA": "','", "LPAR": "'('", "RPAR": "')'", "SEMI": "';'",
-    "STRING_LIT": "a string", "st__MEMBER_NAME": "a member name",
+    "LSQB": "'['",
+    "RSQB": "']'",
+    "COMMA": "','",
+    "LPAR": "'('",
+    "RPAR": "')'",
+    "SEMI": "';'",
+    "STRING_LIT": "a string",
+    "st__MEMBER_NAME": "a member name",
 }
 
 
@@ -229,14 +241,31 @@ def _syntax_error(e: UnexpectedInput, text: str, path: str, o: _Origin) -> Diagn
         expected = set(e.expected)
         if tok.type in _END:
             line, col = _end_pos(text)
-            return diag("S001", f"the rung ends early, expected {_expected(expected)}", path, o.span(n.Span(line, col, line, col)))
+            return diag(
+                "S001",
+                f"the rung ends early, expected {_expected(expected)}",
+                path,
+                o.span(n.Span(line, col, line, col)),
+            )
         if expected <= _END:
-            return diag("S001", f"unexpected {str(tok)!r} after the end of the rung (one rung only)", path, o.span(tspan(tok)))
-        return diag("S001", f"unexpected {str(tok)!r}, expected {_expected(expected)}", path, o.span(tspan(tok)))
+            return diag(
+                "S001",
+                f"unexpected {str(tok)!r} after the end of the rung (one rung only)",
+                path,
+                o.span(tspan(tok)),
+            )
+        return diag(
+            "S001",
+            f"unexpected {str(tok)!r}, expected {_expected(expected)}",
+            path,
+            o.span(tspan(tok)),
+        )
     line, col = e.line, e.column
     off = _offset(text, line, col)
     ch = text[off] if off < len(text) else ""
-    return diag("S004", f"unexpected character {ch!r}", path, o.span(n.Span(line, col, line, col + 1)))
+    return diag(
+        "S004", f"unexpected character {ch!r}", path, o.span(n.Span(line, col, line, col + 1))
+    )
 
 
 def _offset(text: str, line: int, col: int) -> int:
@@ -251,14 +280,19 @@ def _end_pos(text: str) -> tuple[int, int]:
     return line, len(text) - (text.rfind("\n") + 1) + 1
 
 
-def _parse_piece(text: str, path: str, o: _Origin, start: str) -> tuple[n.Rung | n.Comment | None, list[Diagnostic]]:
+def _parse_piece(
+    text: str, path: str, o: _Origin, start: str
+) -> tuple[n.Rung | n.Comment | None, list[Diagnostic]]:
     parser = _parser()
     rung = scan_rung(text, o.line, o.col, _plain_name())  # ordinary rungs: no parser at all
     if rung is not None:
         return rung, []
     try:  # then the LALR tables without recovery, tokens already at file positions
         fast: n.Rung | n.Comment = fast_parse(
-            parser, text, start, lambda state: contextual_tokens(parser, text, state, o.line, o.col),
+            parser,
+            text,
+            start,
+            lambda state: contextual_tokens(parser, text, state, o.line, o.col),
         )
         return fast, []
     except SlowPath:
@@ -278,7 +312,9 @@ def _parse_piece(text: str, path: str, o: _Origin, start: str) -> tuple[n.Rung |
 
 
 # ---------------------------------------------------------------- public API
-def parse_rung(text: str, path: str, number: int, line: int = 1, col: int = 1) -> tuple[n.Rung | None, list[Diagnostic]]:
+def parse_rung(
+    text: str, path: str, number: int, line: int = 1, col: int = 1
+) -> tuple[n.Rung | None, list[Diagnostic]]:
     """Parse one rung's neutral text (trailing `;` optional); text[0] sits at (line, col)."""
     o = _Origin(line, col)
     rung, diags = _parse_piece(text, path, o, "rung_only")
@@ -290,7 +326,9 @@ def parse_rung(text: str, path: str, number: int, line: int = 1, col: int = 1) -
     return rung, diags
 
 
-_HEADER_START = re.compile(r"\s*(TYPE|VAR(?:_INPUT|_OUTPUT|_IN_OUT|_GLOBAL|_EXTERNAL|_TEMP)?)(?![A-Za-z0-9_])", re.I)
+_HEADER_START = re.compile(
+    r"\s*(TYPE|VAR(?:_INPUT|_OUTPUT|_IN_OUT|_GLOBAL|_EXTERNAL|_TEMP)?)(?![A-Za-z0-9_])", re.I
+)
 _HEADER_END = {"TYPE": re.compile(r"(?<![A-Za-z0-9_])END_TYPE(?![A-Za-z0-9_])(\s*;)?", re.I)}
 _END_VAR = re.compile(r"(?<![A-Za-z0-9_])END_VAR(?![A-Za-z0-9_])", re.I)
 
@@ -331,7 +369,9 @@ def parse_rll(text: str, path: str) -> tuple[n.Routine, list[Diagnostic]]:
     """Parse a `.rll` file: optional TYPE/VAR header, then rungs each ending in `;`."""
     stripped = strip_comments(text)
     work = stripped.text
-    diags: list[Diagnostic] = [diag("S003", "comment is not terminated", path, sp) for sp in stripped.unterminated]
+    diags: list[Diagnostic] = [
+        diag("S003", "comment is not terminated", path, sp) for sp in stripped.unterminated
+    ]
     routine = n.Routine(Path(path).stem, "rll", path, comments=stripped.comments)
     head = _header_end(work)
     if head:
@@ -359,7 +399,9 @@ def parse_rll(text: str, path: str) -> tuple[n.Routine, list[Diagnostic]]:
             continue
         if not piece.endswith(";"):
             lend = o.pos(*_end_pos(piece.rstrip()))
-            diags.append(diag("S005", "the last rung is missing its ';'", path, n.Span(*lend, *lend)))
+            diags.append(
+                diag("S005", "the last rung is missing its ';'", path, n.Span(*lend, *lend))
+            )
         if isinstance(result, n.Rung):
             result.number = number
             if pending:

@@ -28,9 +28,26 @@ _IDENT_START = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_"
 _DIGIT = frozenset("0123456789")
 _BLANK = frozenset(" \t\r\n\f")
 # A binary operator after blanks; `=>` and `:=` (named call arguments) are left to the grammar.
-_BINARY = re.compile(r"[ \t\r\n\f]*(<>|<=|>=|=(?!>)|<|>|\+|-|\*(?!\*)|/|&|(?:AND|OR|XOR|MOD)(?![A-Za-z0-9_]))", re.I)
-_PRECEDENCE = {"OR": 1, "XOR": 2, "AND": 3, "&": 3, "=": 4, "<>": 4, "<": 5, "<=": 5, ">": 5, ">=": 5,
-               "+": 6, "-": 6, "*": 7, "/": 7, "MOD": 7}
+_BINARY = re.compile(
+    r"[ \t\r\n\f]*(<>|<=|>=|=(?!>)|<|>|\+|-|\*(?!\*)|/|&|(?:AND|OR|XOR|MOD)(?![A-Za-z0-9_]))", re.I
+)
+_PRECEDENCE = {
+    "OR": 1,
+    "XOR": 2,
+    "AND": 3,
+    "&": 3,
+    "=": 4,
+    "<>": 4,
+    "<": 5,
+    "<=": 5,
+    ">": 5,
+    ">=": 5,
+    "+": 6,
+    "-": 6,
+    "*": 7,
+    "/": 7,
+    "MOD": 7,
+}
 _NOT = re.compile(r"NOT(?![A-Za-z0-9_])", re.I)
 _POW = re.compile(r"[ \t\r\n\f]*\*\*")
 
@@ -153,7 +170,9 @@ class _Scanner:
                 raise _GiveUp
         if len(operands) == 1 and empty:  # `NOP()`: no operands at all
             operands = []
-        return n.LadderInstr(name, operands, self.span(start, self.i), self.span(start, start + len(name)))
+        return n.LadderInstr(
+            name, operands, self.span(start, self.i), self.span(start, start + len(name))
+        )
 
     # ------------------------------------------------------------ operands
     def operand(self, ch: str) -> n.Expr:
@@ -235,6 +254,7 @@ class _Scanner:
         if ch in _DIGIT and ch:
             return self.number()
         return self.reference()
+
     def number(self) -> n.Literal:
         m = _NUMBER.match(self.text, self.i)
         if m is None:
@@ -274,7 +294,12 @@ class _Scanner:
                 if w is None:
                     raise _GiveUp  # `.[x]` indirect bit and the like
                 name_span = self.span(w.start(), w.end())
-                node = n.Member(node, w.group(), n.Span(*first, name_span.end_line, name_span.end_col), name_span)
+                node = n.Member(
+                    node,
+                    w.group(),
+                    n.Span(*first, name_span.end_line, name_span.end_col),
+                    name_span,
+                )
                 self.i = w.end()
             elif ch == "[":
                 self.i += 1
@@ -292,7 +317,6 @@ class _Scanner:
             else:
                 break
         return node
-
 
     def call(self, name: n.Name) -> n.Call:
         """`NAME(arg, ...)` with positional arguments; its span ends with the last argument."""
@@ -321,5 +345,9 @@ def scan_rung(text: str, line: int, col: int, plain_name: re.Pattern[str]) -> n.
     """
     try:
         return _Scanner(text, line, col, plain_name).rung()
-    except (_GiveUp, IndexError, RecursionError):  # deep nesting too: the LALR parser has no stack limit
+    except (
+        _GiveUp,
+        IndexError,
+        RecursionError,
+    ):  # deep nesting too: the LALR parser has no stack limit
         return None

@@ -29,10 +29,30 @@ from lark.parsers.lalr_analysis import Shift
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 # Regex terminals of st.lark and the words a keyword-like regex terminal stands for.
-_REGEX_TERMINALS = {"NAME", "MEMBER_NAME", "PARAM_REF", "QNAME", "LABEL_NAME", "ENUM_PCT", "REAL", "RADIX_INT", "INT", "STRING_LIT",
-                    "VAR_KW", "UNSUPPORTED_KW"}
+_REGEX_TERMINALS = {
+    "NAME",
+    "MEMBER_NAME",
+    "PARAM_REF",
+    "QNAME",
+    "LABEL_NAME",
+    "ENUM_PCT",
+    "REAL",
+    "RADIX_INT",
+    "INT",
+    "STRING_LIT",
+    "VAR_KW",
+    "UNSUPPORTED_KW",
+}
 _REGEX_WORDS = {
-    "VAR_KW": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "VAR_EXTERNAL", "VAR_TEMP"),
+    "VAR_KW": (
+        "VAR",
+        "VAR_INPUT",
+        "VAR_OUTPUT",
+        "VAR_IN_OUT",
+        "VAR_GLOBAL",
+        "VAR_EXTERNAL",
+        "VAR_TEMP",
+    ),
     "UNSUPPORTED_KW": ("RETURN", "GOTO", "CONTINUE"),
 }
 _LABEL_AFTER = re.compile(r"[ \t\r\n]*:(?![=A-Za-z0-9_])")
@@ -46,7 +66,9 @@ class StLexer(Lexer):
     def __init__(self, conf: Any) -> None:
         by_name = {t.name: t for t in conf.terminals}
         names = set(by_name) - set(conf.ignore)
-        strings = {t.name: t.pattern.value for t in conf.terminals if isinstance(t.pattern, PatternStr)}
+        strings = {
+            t.name: t.pattern.value for t in conf.terminals if isinstance(t.pattern, PatternStr)
+        }
         unknown = names - set(strings) - _REGEX_TERMINALS
         if unknown:
             raise ValueError(f"st_lexer does not know the terminals {sorted(unknown)}")
@@ -92,13 +114,20 @@ class StLexer(Lexer):
         if parser_state is not None:
             states = parser_state.parse_conf.parse_table.states
             accepts = lambda: states[parser_state.position]  # noqa: E731
-        for tok in self.tokens(text, max(ctr.char_pos, getattr(src, "start", 0)), end, accepts, parser_state, ctr):
+        for tok in self.tokens(
+            text, max(ctr.char_pos, getattr(src, "start", 0)), end, accepts, parser_state, ctr
+        ):
             lexer_state.last_token = tok
             yield tok
         ctr.char_pos = end
 
     def tokens(
-        self, text: str, pos: int, end: int, accepts: Callable[[], Any] | None, parser_state: Any = None,
+        self,
+        text: str,
+        pos: int,
+        end: int,
+        accepts: Callable[[], Any] | None,
+        parser_state: Any = None,
         counter: Any = None,
     ) -> Iterator[Token]:
         """Tokens of text[pos:end]; `accepts()` gives the terminals the parser accepts now.
@@ -119,7 +148,12 @@ class StLexer(Lexer):
                 line, line_start = _advance(text, pos, ws_end, line, line_start)
                 col = ws_end - line_start + 1
                 raise UnexpectedCharacters(
-                    text, ws_end, line, col, state=parser_state, token_history=[last] if last else None,
+                    text,
+                    ws_end,
+                    line,
+                    col,
+                    state=parser_state,
+                    token_history=[last] if last else None,
                 )
             start = m.end(1)
             if start > pos:
@@ -189,7 +223,10 @@ class SlowPath(Exception):
 
 
 def fast_parse(
-    parser: Lark, text: str, start: str, tokens: Callable[[Callable[[], int]], Iterator[Token]] | None = None,
+    parser: Lark,
+    text: str,
+    start: str,
+    tokens: Callable[[Callable[[], int]], Iterator[Token]] | None = None,
 ) -> Any:
     """LALR parse of a well-formed text with lark's own tables and callbacks.
 
@@ -219,7 +256,9 @@ def fast_parse(
                     value_stack.append(tok)
                     break
                 size, callback, origin = arg
-                if callback is None:  # `?rule` with one child: the value stays, only the state moves
+                if (
+                    callback is None
+                ):  # `?rule` with one child: the value stays, only the state moves
                     state_stack[-1] = states[state_stack[-2]][origin][1]
                     continue
                 if size:
@@ -254,7 +293,9 @@ def fast_parse(
 
 
 @cache
-def _tables(parser: Lark) -> tuple[dict[int, dict[str, tuple[bool, Any]]], dict[str, int], dict[str, int]]:
+def _tables(
+    parser: Lark,
+) -> tuple[dict[int, dict[str, tuple[bool, Any]]], dict[str, int], dict[str, int]]:
     """lark's LALR table re-keyed by plain strings, reductions as (size, callback, goto name).
 
     A reduction whose callback is None is an inlined `?rule` of one child.
@@ -280,7 +321,9 @@ def _tables(parser: Lark) -> tuple[dict[int, dict[str, tuple[bool, Any]]], dict[
     return states, dict(table.start_states), dict(table.end_states)
 
 
-def make_token(ttype: str, value: str, start: int, line: int, col: int, end_line: int, end_col: int, stop: int) -> Token:
+def make_token(
+    ttype: str, value: str, start: int, line: int, col: int, end_line: int, end_col: int, stop: int
+) -> Token:
     """A lark Token without `Token.__new__`'s argument handling (same slots, same values)."""
     tok = str.__new__(Token, value)
     tok.type, tok.value, tok.start_pos, tok.end_pos = ttype, value, start, stop
@@ -301,13 +344,18 @@ def _state_scanner(parser: Lark, state: int, cache: dict[int, _StateScanner]) ->
     basic = parser.parser.lexer.lexers[state]  # type: ignore[attr-defined]
     terms = basic.scanner.terminals  # lark's own order (priority, width, name)
     alts = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terms)
-    found = _StateScanner(re.compile(rf"([ \t\r\n\f]*)(?:{alts})", basic.scanner.g_regex_flags),
-                          dict(basic.callback), frozenset(basic.ignore_types))
+    found = _StateScanner(
+        re.compile(rf"([ \t\r\n\f]*)(?:{alts})", basic.scanner.g_regex_flags),
+        dict(basic.callback),
+        frozenset(basic.ignore_types),
+    )
     cache[state] = found
     return found
 
 
-def contextual_tokens(parser: Lark, text: str, state: Callable[[], int], line: int = 1, col: int = 1) -> Iterator[Token]:
+def contextual_tokens(
+    parser: Lark, text: str, state: Callable[[], int], line: int = 1, col: int = 1
+) -> Iterator[Token]:
     """Tokens of `text` from lark's own per-state terminals (any grammar using lexer="contextual").
 
     The terminal choice is exactly lark's (the terminals of the current parser state in

@@ -22,7 +22,13 @@ from .st_lexer import SlowPath, StLexer, fast_parse
 
 MAX_ERRORS = 25
 
-_BLOCKS = {"IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE", "REPEAT": "END_REPEAT"}
+_BLOCKS = {
+    "IF": "END_IF",
+    "CASE": "END_CASE",
+    "FOR": "END_FOR",
+    "WHILE": "END_WHILE",
+    "REPEAT": "END_REPEAT",
+}
 _CLOSERS = {v: k for k, v in _BLOCKS.items()}
 
 
@@ -320,8 +326,13 @@ def grammar_cache(name: str) -> str | bool:
 def _parser() -> Lark:
     grammar = (Path(__file__).parent / "st.lark").read_text()
     return Lark(
-        grammar, parser="lalr", lexer=StLexer, transformer=AstBuilder(),
-        maybe_placeholders=True, start=["start", "expr"], cache=grammar_cache("st"),
+        grammar,
+        parser="lalr",
+        lexer=StLexer,
+        transformer=AstBuilder(),
+        maybe_placeholders=True,
+        start=["start", "expr"],
+        cache=grammar_cache("st"),
     )
 
 
@@ -335,9 +346,23 @@ def parse_expression(text: str) -> n.Expr:
 
 
 _FRIENDLY = {
-    "SEMI": "';'", "NAME": "a name", "MEMBER_NAME": "a member name", "QNAME": "a name", "PARAM_REF": "a name", "INT": "a number", "REAL": "a number",
-    "RPAR": "')'", "LPAR": "'('", "COMMA": "','", "COLON": "':'", "ASSIGN": "':='",
-    "NR_ASSIGN": "'[:=]'", "RSQB": "']'", "LSQB": "'['", "DOT": "'.'", "$END": "end of file",
+    "SEMI": "';'",
+    "NAME": "a name",
+    "MEMBER_NAME": "a member name",
+    "QNAME": "a name",
+    "PARAM_REF": "a name",
+    "INT": "a number",
+    "REAL": "a number",
+    "RPAR": "')'",
+    "LPAR": "'('",
+    "COMMA": "','",
+    "COLON": "':'",
+    "ASSIGN": "':='",
+    "NR_ASSIGN": "'[:=]'",
+    "RSQB": "']'",
+    "LSQB": "'['",
+    "DOT": "'.'",
+    "$END": "end of file",
 }
 
 
@@ -375,7 +400,11 @@ class _Recovery:
         tok = e.token
         expected = set(e.expected)
         ip = e.interactive_parser
-        if tok.type in _CLOSERS and self.pending_closers.get(tok.type, 0) > 0 and tok.type not in expected:
+        if (
+            tok.type in _CLOSERS
+            and self.pending_closers.get(tok.type, 0) > 0
+            and tok.type not in expected
+        ):
             self.fatal = e
             return False
         closers = [c for c in _CLOSERS if c in expected]
@@ -393,7 +422,9 @@ class _Recovery:
             "SEMI" in expected
             and (tok.type in _STMT_START or tok.line > _last_line(ip.parser_state.value_stack))
         ):
-            self.diags.append(diag("S005", f"expected ';' before {_describe(tok)}", self.path, _at(tok)))
+            self.diags.append(
+                diag("S005", f"expected ';' before {_describe(tok)}", self.path, _at(tok))
+            )
             ip.feed_token(Token.new_borrow_pos("SEMI", ";", tok))
             if tok.type != "$END":
                 ip.feed_token(tok)
@@ -402,8 +433,24 @@ class _Recovery:
         return False
 
 
-_STMT_START = {"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "END_IF", "END_CASE", "END_FOR",
-               "END_WHILE", "END_REPEAT", "ELSIF", "ELSE", "UNTIL", "END_PROGRAM", "$END"}
+_STMT_START = {
+    "IF",
+    "CASE",
+    "FOR",
+    "WHILE",
+    "REPEAT",
+    "EXIT",
+    "END_IF",
+    "END_CASE",
+    "END_FOR",
+    "END_WHILE",
+    "END_REPEAT",
+    "ELSIF",
+    "ELSE",
+    "UNTIL",
+    "END_PROGRAM",
+    "$END",
+}
 
 
 def _last_line(stack: list) -> int:
@@ -430,7 +477,9 @@ def _at(tok: Token) -> n.Span:
         # Lark gives end of input the last token's position; what is missing belongs just
         # after that token (SPEC 9.10: where the parser expected it), so point there.
         return n.Span(tok.end_line, tok.end_column, tok.end_line, tok.end_column + 1)
-    return n.Span(tok.line, tok.column or 1, tok.end_line or tok.line, tok.end_column or (tok.column or 1) + 1)
+    return n.Span(
+        tok.line, tok.column or 1, tok.end_line or tok.line, tok.end_column or (tok.column or 1) + 1
+    )
 
 
 def _blank(text: str, start: int, end: int) -> str:
@@ -476,7 +525,11 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
             off = _offset(work, starts, err.line, err.column)
             ch = work[off] if off < len(work) else ""
             sp = n.Span(err.line, err.column, err.line, err.column + 1)
-            code, msg = ("S003", "string is not terminated") if ch in "'\"" else ("S004", f"unexpected character {ch!r}")
+            code, msg = (
+                ("S003", "string is not terminated")
+                if ch in "'\""
+                else ("S004", f"unexpected character {ch!r}")
+            )
             if (code, err.line, err.column) not in seen:
                 seen.add((code, err.line, err.column))
                 diags.append(diag(code, msg, path, sp))
@@ -499,7 +552,12 @@ def parse_st(text: str, path: str, name: str | None = None) -> tuple[n.Routine, 
             if key not in seen:
                 seen.add(key)  # type: ignore[arg-type]
                 diags.append(
-                    diag("S001", f"unexpected {_describe(tok)}, expected {_expected(set(err.expected))}", path, _at(tok))
+                    diag(
+                        "S001",
+                        f"unexpected {_describe(tok)}, expected {_expected(set(err.expected))}",
+                        path,
+                        _at(tok),
+                    )
                 )
         start = _statement_start(work, off)
         semi = work.find(";", off)

@@ -97,7 +97,9 @@ def parse_xml(data: bytes) -> tuple[XElem, Positions]:
 
     def reject(what: str) -> None:
         line, col = p.CurrentLineNumber, p.CurrentColumnNumber + 1
-        raise XmlRejected(f"{what} are not accepted in a project export (possible entity attack)", line, col)
+        raise XmlRejected(
+            f"{what} are not accepted in a project export (possible entity attack)", line, col
+        )
 
     def start(tag: str, attrs: dict[str, str]) -> None:
         e = XElem(tag, attrs, p.CurrentByteIndex)
@@ -154,7 +156,11 @@ def parse_xml(data: bytes) -> tuple[XElem, Positions]:
         m = _ENCODING.search(data, 0, 512)
         line, col = pos.at(m.end(1)) if m else (1, 1)
         name = m.group(2).decode("ascii", "replace") if m else "?"
-        raise XmlRejected(f"malformed XML: the declared encoding '{name}' cannot be read (exports are UTF-8)", line, col) from None
+        raise XmlRejected(
+            f"malformed XML: the declared encoding '{name}' cannot be read (exports are UTF-8)",
+            line,
+            col,
+        ) from None
     if not root:
         raise XmlRejected("no XML element found", 1, 1)
     return root[0], pos

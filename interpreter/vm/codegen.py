@@ -123,13 +123,36 @@ def _r2i(x: float) -> int:
 
 
 HELPERS: dict[str, Any] = {
-    "_xf": _xf, "_wd": _wd, "_idiv": _idiv, "_imod": _imod, "_fdiv": _fdiv, "_fmod": _fmod,
-    "_ipow": _ipow, "_fpow": _fpow, "_setbit": _setbit, "_sset": _sset, "_scmp": _scmp,
-    "_f32": f32, "_r2i": _r2i, "_wrap": wrap, "_Ref": Ref, "_BitRef": BitRef,
-    "_ArrayRef": ArrayRef, "MajorFault": MajorFault,
-    "_stf": store_flags, "_rvn": returned, "_rv": return_value, "_cpy": copy_into,
-    "_vi": over_int, "_vr": over_real, "_vidiv": over_idiv, "_vimod": over_imod, "_vipow": over_ipow,
-    "_vfdiv": over_fdiv, "_vfmod": over_fmod, "_INF": math.inf,
+    "_xf": _xf,
+    "_wd": _wd,
+    "_idiv": _idiv,
+    "_imod": _imod,
+    "_fdiv": _fdiv,
+    "_fmod": _fmod,
+    "_ipow": _ipow,
+    "_fpow": _fpow,
+    "_setbit": _setbit,
+    "_sset": _sset,
+    "_scmp": _scmp,
+    "_f32": f32,
+    "_r2i": _r2i,
+    "_wrap": wrap,
+    "_Ref": Ref,
+    "_BitRef": BitRef,
+    "_ArrayRef": ArrayRef,
+    "MajorFault": MajorFault,
+    "_stf": store_flags,
+    "_rvn": returned,
+    "_rv": return_value,
+    "_cpy": copy_into,
+    "_vi": over_int,
+    "_vr": over_real,
+    "_vidiv": over_idiv,
+    "_vimod": over_imod,
+    "_vipow": over_ipow,
+    "_vfdiv": over_fdiv,
+    "_vfmod": over_fmod,
+    "_INF": math.inf,
 }
 
 _TRUE = ("1", "True")
@@ -148,6 +171,8 @@ def _nesting(expr: str) -> int:
         elif ch == ")":
             depth -= 1
     return deepest
+
+
 _FALSE = ("0", "False")
 
 
@@ -280,7 +305,12 @@ class Translator:
         return f"({t} if 0 <= ({t} := {expr}) < {size} else _xf({site}))"
 
     def translate(self) -> str:
-        head = [f"def {self.func_name}(T, ctx):", "    _s = 0", "    _W = ctx.budget - ctx.steps", "    try:"]
+        head = [
+            f"def {self.func_name}(T, ctx):",
+            "    _s = 0",
+            "    _W = ctx.budget - ctx.steps",
+            "    try:",
+        ]
         self.indent = 2
         self.block_has_code.append(False)
         for ins in self.ops:
@@ -329,7 +359,12 @@ class Translator:
             st.append(_Place(p.container, p.key, self.checked(bit_expr, owner.bits, site), owner))
         elif op is Op.CONST:
             value, t = arg  # type: ignore[misc]
-            if isinstance(t, Elementary) and t.kind is Kind.REAL and t.bits == 32 and isinstance(value, int | float):
+            if (
+                isinstance(t, Elementary)
+                and t.kind is Kind.REAL
+                and t.bits == 32
+                and isinstance(value, int | float)
+            ):
                 value = f32(float(value))  # first: 1.0e39 becomes inf in a REAL
             if isinstance(value, float) and (math.isinf(value) or math.isnan(value)):
                 expr = self.const_name(value)
@@ -341,7 +376,9 @@ class Translator:
                     expr = f"({expr})"
             st.append(_Val(expr, t))
         elif op is Op.SYS:
-            st.append(_Val("ctx.first_scan" if arg == "FS" else f"ctx.status.get({arg!r}, 0)", BOOL))
+            st.append(
+                _Val("ctx.first_scan" if arg == "FS" else f"ctx.status.get({arg!r}, 0)", BOOL)
+            )
         elif op is Op.LOAD:
             p = self.pop_place()
             if p.bit is not None:
@@ -365,16 +402,31 @@ class Translator:
             p = self.pop_place()
             t = arg  # type: ignore[assignment]
             if p.bit is not None:
-                st.append(_Val(f"_BitRef({p.container}, {p.key}, {p.bit}, {self.const_name(p.owner)})", None))
+                st.append(
+                    _Val(
+                        f"_BitRef({p.container}, {p.key}, {p.bit}, {self.const_name(p.owner)})",
+                        None,
+                    )
+                )
             else:
                 st.append(_Val(f"_Ref({p.container}, {p.key}, {self.const_name(t)})", None))
         elif op is Op.AREF:
             elem, dims, indexed = arg  # type: ignore[misc]
             p = self.pop_place()
             if indexed:
-                st.append(_Val(f"_ArrayRef({p.container}, {p.key}, {self.const_name(elem)}, {dims!r})", None))
+                st.append(
+                    _Val(
+                        f"_ArrayRef({p.container}, {p.key}, {self.const_name(elem)}, {dims!r})",
+                        None,
+                    )
+                )
             else:
-                st.append(_Val(f"_ArrayRef({p.container}[{p.key}], 0, {self.const_name(elem)}, {dims!r})", None))
+                st.append(
+                    _Val(
+                        f"_ArrayRef({p.container}[{p.key}], 0, {self.const_name(elem)}, {dims!r})",
+                        None,
+                    )
+                )
         elif op is Op.CONV:
             src, dst = arg  # type: ignore[misc]
             v = self.pop_val()
@@ -466,7 +518,9 @@ class Translator:
             st.pop()
         elif op is Op.LAND or op is Op.LOR:
             b, a = self.pop_val(), self.pop_val()
-            st.append(_rung_logic(a, b, "and" if op is Op.LAND else "or"))  # translate() bounds its depth
+            st.append(
+                _rung_logic(a, b, "and" if op is Op.LAND else "or")
+            )  # translate() bounds its depth
         elif op is Op.RCALL:
             key, count = arg
             args = [self.pop_val().expr for _ in range(count)][::-1]
@@ -475,7 +529,13 @@ class Translator:
                 r = self.fresh()
                 self.line(f"{r} = {rung}")
                 rung = r
-            flag = "True" if rung in _TRUE else "False" if rung in _FALSE else f"(True if {rung} else False)"
+            flag = (
+                "True"
+                if rung in _TRUE
+                else "False"
+                if rung in _FALSE
+                else f"(True if {rung} else False)"
+            )
             fn = self.impl(key)
             res = self.fresh()
             self.line(f"ctx.site = {site}")
@@ -527,7 +587,9 @@ class Translator:
         st = self.stack
         if op in ("AND", "OR", "XOR"):
             if t.kind is Kind.BOOL:
-                expr = {"AND": f"({x} and {y})", "OR": f"({x} or {y})", "XOR": f"(({x}) != ({y}))"}[op]
+                expr = {"AND": f"({x} and {y})", "OR": f"({x} or {y})", "XOR": f"(({x}) != ({y}))"}[
+                    op
+                ]
                 st.append(_Val(f"(1 if {expr} else 0)" if op != "XOR" else expr, BOOL))
             else:
                 sym = {"AND": "&", "OR": "|", "XOR": "^"}[op]
@@ -564,7 +626,6 @@ class Translator:
             st.append(_Val(f"_imod(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
         elif op == "**":
             st.append(_Val(f"_ipow(ctx, {x}, {y}, {site}, {t.bits}, {t.signed})", t))
-
 
     def checked_binary(self, op: str, t: Elementary, x: str, y: str) -> None:
         """Arithmetic of a ladder CPT/FAL expression: results as `binary`, and a result that
@@ -608,4 +669,3 @@ def _rung_logic(a: _Val, b: _Val, word: str) -> _Val:
 def _result_src(t: DataType) -> DataType:
     """Functions return Python numbers: floats for REAL results, ints otherwise."""
     return LREAL if isinstance(t, Elementary) and t.kind is Kind.REAL else LINT
-

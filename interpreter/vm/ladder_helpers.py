@@ -75,7 +75,11 @@ def over_ipow(ctx: ExecContext, a: int, b: int, bits: int, signed: bool) -> int:
 
 def over_fdiv(ctx: ExecContext, a: float, b: float, single: bool) -> float:
     if b == 0.0:
-        r = math.nan if a == 0.0 or math.isnan(a) else math.copysign(math.inf, a) * math.copysign(1.0, b)
+        r = (
+            math.nan
+            if a == 0.0 or math.isnan(a)
+            else math.copysign(math.inf, a) * math.copysign(1.0, b)
+        )
     else:
         r = a / b
     return over_real(ctx, f32(r) if single else r)
@@ -92,7 +96,9 @@ def returned(ctx: ExecContext, count: int, site: int) -> bool:
     if rv is None:
         return False
     if len(rv) != count:
-        raise MajorFault(4, 31, f"RET handed back {len(rv)} value(s), the JSR expects {count}", site)
+        raise MajorFault(
+            4, 31, f"RET handed back {len(rv)} value(s), the JSR expects {count}", site
+        )
     return True
 
 

@@ -109,9 +109,16 @@ def set_string(s: list, data: bytes) -> None:
 
 # ------------------------------------------------------------------ bytes view (COP/CPS)
 _FMT = {
-    ("int", 8, True): "b", ("int", 8, False): "B", ("int", 16, True): "h", ("int", 16, False): "H",
-    ("int", 32, True): "i", ("int", 32, False): "I", ("int", 64, True): "q", ("int", 64, False): "Q",
-    ("real", 32, True): "f", ("real", 64, True): "d",
+    ("int", 8, True): "b",
+    ("int", 8, False): "B",
+    ("int", 16, True): "h",
+    ("int", 16, False): "H",
+    ("int", 32, True): "i",
+    ("int", 32, False): "I",
+    ("int", 64, True): "q",
+    ("int", 64, False): "Q",
+    ("real", 32, True): "f",
+    ("real", 64, True): "d",
 }
 
 

@@ -99,17 +99,25 @@ def export(target_bytes: int, per_program: int = 40) -> str:
     p = 0
     programs: list[str] = []
     while size < target_bytes - 2000:
-        body = [f'<Program Name="P{p}" TestEdits="false" MainRoutineName="Main" Disabled="false">\n<Routines>\n',
-                '<Routine Name="Main" Type="RLL">\n<RLLContent>\n']
+        body = [
+            f'<Program Name="P{p}" TestEdits="false" MainRoutineName="Main" Disabled="false">\n<Routines>\n',
+            '<Routine Name="Main" Type="RLL">\n<RLLContent>\n',
+        ]
         for r in range(per_program):
             i, j = (p * per_program + r) % n_tags, (p * per_program + r + 7) % n_tags
             text = RUNGS[r % len(RUNGS)].format(i=i, j=j)
-            comment = f"<Comment>\n<![CDATA[Rung {r}: station {i}]]>\n</Comment>\n" if r % 3 == 0 else ""
-            body.append(f'<Rung Number="{r}" Type="N">\n{comment}<Text>\n<![CDATA[{text}]]>\n</Text>\n</Rung>\n')
+            comment = (
+                f"<Comment>\n<![CDATA[Rung {r}: station {i}]]>\n</Comment>\n" if r % 3 == 0 else ""
+            )
+            body.append(
+                f'<Rung Number="{r}" Type="N">\n{comment}<Text>\n<![CDATA[{text}]]>\n</Text>\n</Rung>\n'
+            )
         body.append("</RLLContent>\n</Routine>\n")
         body.append('<Routine Name="Calc" Type="ST">\n<STContent>\n')
         for k, line in enumerate(ST_LINES):
-            body.append(f'<Line Number="{k}">\n<![CDATA[{line.format(p=p, i=p % n_tags)}]]>\n</Line>\n')
+            body.append(
+                f'<Line Number="{k}">\n<![CDATA[{line.format(p=p, i=p % n_tags)}]]>\n</Line>\n'
+            )
         body.append("</STContent>\n</Routine>\n</Routines>\n</Program>\n")
         chunk = "".join(body)
         parts.append(chunk)
@@ -117,9 +125,13 @@ def export(target_bytes: int, per_program: int = 40) -> str:
         size += len(chunk)
         p += 1
     parts.append("</Programs>\n<Tasks>\n")
-    parts.append('<Task Name="Main" Type="CONTINUOUS" Priority="10" Watchdog="500">\n<ScheduledPrograms>\n')
+    parts.append(
+        '<Task Name="Main" Type="CONTINUOUS" Priority="10" Watchdog="500">\n<ScheduledPrograms>\n'
+    )
     parts.append("\n".join(programs))
-    parts.append("\n</ScheduledPrograms>\n</Task>\n</Tasks>\n</Controller>\n</RSLogix5000Content>\n")
+    parts.append(
+        "\n</ScheduledPrograms>\n</Task>\n</Tasks>\n</Controller>\n</RSLogix5000Content>\n"
+    )
     return "".join(parts)
 
 
@@ -135,8 +147,13 @@ def bench(megabytes: float = 2.0, repeat: int = 3) -> dict[str, float]:
         cli = float("inf")
         for _ in range(repeat):  # the whole command, as a user runs it: start-up, grammars, exit
             t0 = time.perf_counter()
-            done = subprocess.run([sys.executable, "-m", "interpreter.cli", "check", str(path)],
-                                  capture_output=True, text=True, check=False, cwd=ROOT)
+            done = subprocess.run(
+                [sys.executable, "-m", "interpreter.cli", "check", str(path)],
+                capture_output=True,
+                text=True,
+                check=False,
+                cwd=ROOT,
+            )
             cli = min(cli, time.perf_counter() - t0)
             assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     rungs = text.count("<Rung ")
@@ -145,8 +162,10 @@ def bench(megabytes: float = 2.0, repeat: int = 3) -> dict[str, float]:
 
 def test_l5x_check_benchmark() -> None:
     r = bench()
-    print(f"\ncheck {r['bytes'] / 1e6:.2f} MB export ({r['rungs']:.0f} rungs): load {r['seconds']:.2f} s, "
-          f"whole `logixst check` command {r['cli']:.2f} s")
+    print(
+        f"\ncheck {r['bytes'] / 1e6:.2f} MB export ({r['rungs']:.0f} rungs): load {r['seconds']:.2f} s, "
+        f"whole `logixst check` command {r['cli']:.2f} s"
+    )
 
 
 if __name__ == "__main__":
@@ -154,6 +173,8 @@ if __name__ == "__main__":
     r = bench(mb)
     verdict = "meets" if r["seconds"] < TARGET_S else "misses"
     verdict_cli = "meets" if r["cli"] < TARGET_S else "misses"
-    print(f"check of a {r['bytes'] / 1e6:.2f} MB export with {r['rungs']:.0f} rungs: best of 3 "
-          f"load {r['seconds']:.2f} s ({verdict} the {TARGET_S} s target); whole `logixst check` "
-          f"command {r['cli']:.2f} s ({verdict_cli})")
+    print(
+        f"check of a {r['bytes'] / 1e6:.2f} MB export with {r['rungs']:.0f} rungs: best of 3 "
+        f"load {r['seconds']:.2f} s ({verdict} the {TARGET_S} s target); whole `logixst check` "
+        f"command {r['cli']:.2f} s ({verdict_cli})"
+    )

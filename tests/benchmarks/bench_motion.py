@@ -66,8 +66,10 @@ def _program(n_axes: int) -> str:
         f"  MATC(A{i}, c{i}, 0, prof, 1.0, {0.5 + 0.01 * i}, continuous, immediate, 0.0, none, 0);"
         for i in range(n_axes)
     )
-    return (f"VAR\n  prof : CAM_PROFILE[9] := [{pts}];\n  {axes} : AXIS_VIRTUAL;\n"
-            f"  {ctls} : MOTION_INSTRUCTION;\nEND_VAR\nIF S:FS THEN\n{cams}\nEND_IF;\n")
+    return (
+        f"VAR\n  prof : CAM_PROFILE[9] := [{pts}];\n  {axes} : AXIS_VIRTUAL;\n"
+        f"  {ctls} : MOTION_INSTRUCTION;\nEND_VAR\nIF S:FS THEN\n{cams}\nEND_IF;\n"
+    )
 
 
 def per_scan_seconds(n_axes: int, scans: int) -> float:

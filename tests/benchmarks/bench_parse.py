@@ -68,7 +68,9 @@ def program(lines: int) -> str:
     parts = [HEADER]
     n_blocks = max(1, (lines - HEADER.count("\n")) // BLOCK.count("\n"))
     for k in range(n_blocks):
-        parts.append(BLOCK.format(k=k, s=k % 16, k4=k % 65536, b=k % 64, g=k % 8, h=(k * 3) % 8, o=k % 56))
+        parts.append(
+            BLOCK.format(k=k, s=k % 16, k4=k % 65536, b=k % 64, g=k % 8, h=(k * 3) % 8, o=k % 56)
+        )
     return "".join(parts)
 
 
@@ -81,8 +83,13 @@ def bench(lines: int = 20_000, repeat: int = 3) -> dict[str, float]:
         path.write_text(text)
         best, loaded = best_load(path, repeat)
         assert not loaded.diagnostics, loaded.diagnostics[:3]
-    return {"lines": n_lines, "bytes": len(text.encode()), "seconds": best, "lines_per_s": n_lines / best,
-            "lark_ratio": lark_ratio(text)}
+    return {
+        "lines": n_lines,
+        "bytes": len(text.encode()),
+        "seconds": best,
+        "lines_per_s": n_lines / best,
+        "lark_ratio": lark_ratio(text),
+    }
 
 
 def lark_ratio(text: str) -> float:
@@ -94,9 +101,17 @@ def lark_ratio(text: str) -> float:
     from interpreter.syntax.st_lexer import fast_parse
     from interpreter.syntax.st_parser import AstBuilder
 
-    grammar = (Path(__file__).resolve().parents[2] / "interpreter" / "syntax" / "st.lark").read_text()
-    ref = Lark(grammar, parser="lalr", lexer="contextual", transformer=AstBuilder(),
-               maybe_placeholders=True, start=["start", "expr"])
+    grammar = (
+        Path(__file__).resolve().parents[2] / "interpreter" / "syntax" / "st.lark"
+    ).read_text()
+    ref = Lark(
+        grammar,
+        parser="lalr",
+        lexer="contextual",
+        transformer=AstBuilder(),
+        maybe_placeholders=True,
+        start=["start", "expr"],
+    )
     work = strip_comments(text).text
     ours = theirs = float("inf")
     with gc_paused():
@@ -112,15 +127,19 @@ def lark_ratio(text: str) -> float:
 
 def test_parse_benchmark() -> None:
     r = bench()
-    print(f"\nload {r['lines']:.0f} lines: {r['seconds']:.2f} s ({r['lines_per_s']:.0f} lines/s); "
-          f"lark's own lexer+loop is {r['lark_ratio']:.2f}x slower")
+    print(
+        f"\nload {r['lines']:.0f} lines: {r['seconds']:.2f} s ({r['lines_per_s']:.0f} lines/s); "
+        f"lark's own lexer+loop is {r['lark_ratio']:.2f}x slower"
+    )
 
 
 if __name__ == "__main__":
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 20_000
     r = bench(n)
     verdict = "meets" if r["seconds"] < TARGET_S else "misses"
-    print(f"load (parse + verify) of {r['lines']:.0f} lines, {r['bytes'] / 1e6:.2f} MB: "
-          f"best of 3 {r['seconds']:.2f} s = {r['lines_per_s']:.0f} lines/s; "
-          f"{verdict} the {TARGET_S:.0f} s target; lark's contextual lexer and parser loop take "
-          f"{r['lark_ratio']:.2f}x our parse time")
+    print(
+        f"load (parse + verify) of {r['lines']:.0f} lines, {r['bytes'] / 1e6:.2f} MB: "
+        f"best of 3 {r['seconds']:.2f} s = {r['lines_per_s']:.0f} lines/s; "
+        f"{verdict} the {TARGET_S:.0f} s target; lark's contextual lexer and parser loop take "
+        f"{r['lark_ratio']:.2f}x our parse time"
+    )

@@ -108,8 +108,14 @@ def bench(n: int = 200_000) -> dict[str, float]:
     acc, y = plain(n)
     assert get_acc() == acc
     assert abs(get_y() - y) <= 1e-6 * abs(y)  # float32 vs double: same value to ~7 digits
-    return {"n": n, "st": t_st, "python": t_py, "python_logix": t_pl,
-            "ratio": t_st / t_py, "ratio_logix": t_st / t_pl}
+    return {
+        "n": n,
+        "st": t_st,
+        "python": t_py,
+        "python_logix": t_pl,
+        "ratio": t_st / t_py,
+        "ratio_logix": t_st / t_pl,
+    }
 
 
 def report(r: dict[str, float]) -> str:

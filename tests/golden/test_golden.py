@@ -48,7 +48,9 @@ def simulate(case: Path) -> list[list[str]]:
         for tag, value in inputs.get(k, {}).items():
             ctl.reference(tag)[2](_input_value(value))
         assert ctl.scan(), ctl.faults()
-        rows.append([repr(k * period / 1000.0)] + [str(_csv_value(g(), t)) for _, g, t, _ in watches])
+        rows.append(
+            [repr(k * period / 1000.0)] + [str(_csv_value(g(), t)) for _, g, t, _ in watches]
+        )
     return rows
 
 
@@ -77,7 +79,11 @@ def test_golden(name: str, request: pytest.FixtureRequest) -> None:
     assert got[0] == expected[0], "header"
     assert len(got) == len(expected), "number of scans"
     for k, (g, e) in enumerate(zip(got[1:], expected[1:], strict=True)):
-        bad = [(col, gv, ev) for col, gv, ev in zip(expected[0], g, e, strict=True) if not _same(gv, ev)]
+        bad = [
+            (col, gv, ev)
+            for col, gv, ev in zip(expected[0], g, e, strict=True)
+            if not _same(gv, ev)
+        ]
         assert not bad, f"scan {k}: (column, got, expected) {bad}"
 
 

@@ -60,10 +60,14 @@ def test_file_errors_fault() -> None:
         fs.ave(ExecContext(), True, _arr([1, 2]), 0, d, new_control(LEN=-1))
     assert (e.value.type, e.value.code) == (4, 21)
     with pytest.raises(MajorFault) as e:
-        fs.ave(ExecContext(), True, _arr([1, 2]), 1, d, new_control(LEN=2))  # a 1-D array has no dim 1
+        fs.ave(
+            ExecContext(), True, _arr([1, 2]), 1, d, new_control(LEN=2)
+        )  # a 1-D array has no dim 1
     assert (e.value.type, e.value.code) == (4, 20)
     with pytest.raises(MajorFault) as e:
-        fs.ave(ExecContext(), True, _arr([1, 2, 3], start=1), 0, d, new_control(LEN=3))  # 1..3 of 0..2
+        fs.ave(
+            ExecContext(), True, _arr([1, 2, 3], start=1), 0, d, new_control(LEN=3)
+        )  # 1..3 of 0..2
     assert (e.value.type, e.value.code) == (4, 20)
 
 

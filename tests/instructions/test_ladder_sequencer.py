@@ -51,7 +51,9 @@ def test_sqo_invalid_length_sets_er_and_step_past_array_faults() -> None:
     sq.sqo(ExecContext(), True, _arr([0, 1]), -1, out, ctl)
     assert ctl[sq.ER] == 1 and out.get() == 5
     with pytest.raises(MajorFault) as e:
-        sq.sqo(ExecContext(), True, _arr([0, 1]), -1, out, new_control(LEN=3, POS=1))  # step 2 of [0, 1]
+        sq.sqo(
+            ExecContext(), True, _arr([0, 1]), -1, out, new_control(LEN=3, POS=1)
+        )  # step 2 of [0, 1]
     assert (e.value.type, e.value.code) == (4, 20)
 
 

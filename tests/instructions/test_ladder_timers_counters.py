@@ -13,7 +13,9 @@ MAX = 2**31 - 1
 MIN = -(2**31)
 
 
-def _run(fn, ctx: ExecContext, t: list, steps: list[tuple[float, bool]]) -> list[tuple[int, int, int, int]]:  # noqa: ANN001
+def _run(
+    fn, ctx: ExecContext, t: list, steps: list[tuple[float, bool]]
+) -> list[tuple[int, int, int, int]]:  # noqa: ANN001
     """Execute at each (scan start time, rung); record (ACC, EN, TT, DN) after each."""
     out = []
     for now, rung in steps:
@@ -26,14 +28,19 @@ def _run(fn, ctx: ExecContext, t: list, steps: list[tuple[float, bool]]) -> list
 # ------------------------------------------------------------------ TON
 def test_ton_bit_table_10ms_scans() -> None:
     t = new_struct("TIMER", PRE=30)
-    rec = _run(tc.ton, ExecContext(), t, [(0, True), (10, True), (20, True), (30, True), (40, True), (50, False)])
+    rec = _run(
+        tc.ton,
+        ExecContext(),
+        t,
+        [(0, True), (10, True), (20, True), (30, True), (40, True), (50, False)],
+    )
     assert rec == [
-        (0, 1, 1, 0),   # first true scan: EN, TT set, time remembered, ACC not advanced
+        (0, 1, 1, 0),  # first true scan: EN, TT set, time remembered, ACC not advanced
         (10, 1, 1, 0),  # 10 ms later
         (20, 1, 1, 0),
         (30, 1, 0, 1),  # ACC 30 >= PRE 30: DN set, TT cleared
         (30, 1, 0, 1),  # done: nothing changes while the rung stays true
-        (0, 0, 0, 0),   # false rung: everything cleared
+        (0, 0, 0, 0),  # false rung: everything cleared
     ]
 
 
@@ -85,11 +92,13 @@ def test_tof_bit_table_10ms_scans() -> None:
     ctx = ExecContext()
     tc.tof_prescan(ctx, True, t, 20, 0)
     assert (t[tc.PRE], t[tc.ACC]) == (20, 20)  # prescan: ACC = PRE, bits clear
-    rec = _run(tc.tof, ctx, t, [(0, False), (10, True), (20, False), (30, False), (40, False), (50, False)])
+    rec = _run(
+        tc.tof, ctx, t, [(0, False), (10, True), (20, False), (30, False), (40, False), (50, False)]
+    )
     assert rec == [
         (20, 0, 0, 0),  # false rung with DN clear: nothing (no run-on at start-up)
-        (0, 1, 0, 1),   # true: EN, DN set, TT clear, ACC cleared
-        (0, 0, 1, 1),   # first false scan: EN cleared, TT set, time remembered
+        (0, 1, 0, 1),  # true: EN, DN set, TT clear, ACC cleared
+        (0, 0, 1, 1),  # first false scan: EN cleared, TT set, time remembered
         (10, 0, 1, 1),  # 10 ms later
         (20, 0, 0, 0),  # ACC 20 >= PRE 20: DN and TT cleared
         (20, 0, 0, 0),  # stays timed out
@@ -109,7 +118,12 @@ def test_tof_true_rung_during_timing_restarts() -> None:
 def test_rto_retains_acc_over_a_false_rung_until_res() -> None:
     t = new_struct("TIMER", PRE=30)
     ctx = ExecContext()
-    rec = _run(tc.rto, ctx, t, [(0, True), (10, True), (20, False), (30, True), (40, True), (50, True), (60, False)])
+    rec = _run(
+        tc.rto,
+        ctx,
+        t,
+        [(0, True), (10, True), (20, False), (30, True), (40, True), (50, True), (60, False)],
+    )
     assert rec == [
         (0, 1, 1, 0),
         (10, 1, 1, 0),

@@ -35,8 +35,21 @@ def test_true_rung_sets_en_and_clears_the_results() -> None:
     c = _ctl(DN=1, ER=1, PC=1, IP=1, AC=1, ACCEL=1, DECEL=1)
     c[IX["ERR"]], c[IX["EXERR"]] = 13, 4
     assert begin(c, True) is True
-    got = {n: c[IX[n]] for n in ("EN", "DN", "ER", "PC", "IP", "AC", "ACCEL", "DECEL", "ERR", "EXERR")}
-    assert got == {"EN": 1, "DN": 0, "ER": 0, "PC": 0, "IP": 0, "AC": 0, "ACCEL": 0, "DECEL": 0, "ERR": 0, "EXERR": 0}
+    got = {
+        n: c[IX[n]] for n in ("EN", "DN", "ER", "PC", "IP", "AC", "ACCEL", "DECEL", "ERR", "EXERR")
+    }
+    assert got == {
+        "EN": 1,
+        "DN": 0,
+        "ER": 0,
+        "PC": 0,
+        "IP": 0,
+        "AC": 0,
+        "ACCEL": 0,
+        "DECEL": 0,
+        "ERR": 0,
+        "EXERR": 0,
+    }
     # FLAGS: EN is bit 31 of a DINT, so the word is negative: -2**31
     assert c[IX["FLAGS"]] == -(2**31)
 

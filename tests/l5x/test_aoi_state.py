@@ -25,10 +25,14 @@ def rung(number: int, text: str) -> str:
     return f'<Rung Number="{number}" Type="N"><Text><![CDATA[{text}]]></Text></Rung>\n'
 
 
-def project(logic: list[str], main: list[str], program_tags: str, ctl_tags: str = "", params: str = "") -> str:
+def project(
+    logic: list[str], main: list[str], program_tags: str, ctl_tags: str = "", params: str = ""
+) -> str:
     """One AOI `Mover` (Input Go, InOut Ax, local MOTION_INSTRUCTION MC) with a ladder Logic
     routine, and a ladder Main routine in MainProgram."""
-    return HEAD + f"""<AddOnInstructionDefinitions>
+    return (
+        HEAD
+        + f"""<AddOnInstructionDefinitions>
 <AddOnInstructionDefinition Name="Mover" Revision="1.0">
 <Parameters>
 <Parameter Name="EnableIn" TagType="Base" DataType="BOOL" Usage="Input" Required="false" Visible="false"/>
@@ -66,12 +70,15 @@ def project(logic: list[str], main: list[str], program_tags: str, ctl_tags: str 
 </Controller>
 </RSLogix5000Content>
 """
+    )
 
 
 def axis(name: str) -> str:
-    return (f'<Tag Name="{name}" TagType="Base" DataType="AXIS_VIRTUAL"><Data Format="Axis">'
-            '<AxisParameters MotionGroup="Group1" MaximumSpeed="100.0" MaximumAcceleration="1000.0" '
-            'MaximumDeceleration="1000.0"/></Data></Tag>\n')
+    return (
+        f'<Tag Name="{name}" TagType="Base" DataType="AXIS_VIRTUAL"><Data Format="Axis">'
+        '<AxisParameters MotionGroup="Group1" MaximumSpeed="100.0" MaximumAcceleration="1000.0" '
+        'MaximumDeceleration="1000.0"/></Data></Tag>\n'
+    )
 
 
 def tag(name: str, dtype: str) -> str:
@@ -121,13 +128,23 @@ def test_transitional_edge_is_per_instance(tmp_path: Path, monkeypatch: pytest.M
     #   scan 4: A rises again -> (A, True); B false -> (B, False)
     # One edge shared by both instances would have let A "rise" again in scans 1 and 2,
     # because B's false rung cleared the bit in between.
-    assert calls == [("A", True), ("B", False), ("B", False), ("B", True), ("A", False), ("A", True), ("B", False)]
+    assert calls == [
+        ("A", True),
+        ("B", False),
+        ("B", False),
+        ("B", True),
+        ("A", False),
+        ("A", True),
+        ("B", False),
+    ]
 
 
 def test_two_instances_move_their_own_axes(tmp_path: Path) -> None:
     """Real MAM: an incremental move of 10 runs once per rising edge of each instance's Go."""
-    logic = ["XIC(Go)MAM(Ax,MC,1,10.0,100.0,Units per sec,1000.0,Units per sec2,1000.0,Units per sec2,"
-             "Trapezoidal,0.0,0.0,Units per sec3,Disabled,Programmed,0.0,None,0,0);"]
+    logic = [
+        "XIC(Go)MAM(Ax,MC,1,10.0,100.0,Units per sec,1000.0,Units per sec2,1000.0,Units per sec2,"
+        "Trapezoidal,0.0,0.0,Units per sec3,Disabled,Programmed,0.0,None,0,0);"
+    ]
     # GoB rises at scan 50 (K counts scans from 0; GoB = K >= 50); GoA is true from the start.
     main = ["OTL(GoA);", "GEQ(K,50)OTE(GoB);", *MAIN, "ADD(K,1,K);"]
     ctl = controller(tmp_path, project(logic, main, INSTANCES + tag("K", "DINT"), AXES))
@@ -153,7 +170,11 @@ def test_ladder_caller_prescans_the_aoi_logic(tmp_path: Path) -> None:
     """Prescan of a ladder rung calling an AOI prescans the AOI's Logic routine, as an ST call
     does: its OTE clears the instance's output Q, exported as 1."""
     q = '<Parameter Name="Q" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="true"/>\n'
-    m1 = ('<Tag Name="M1" TagType="Base" DataType="Mover"><Data Format="Decorated"><Structure DataType="Mover">'
-          '<DataValueMember Name="Q" DataType="BOOL" Value="1"/></Structure></Data></Tag>\n')
-    ctl = controller(tmp_path, project(["XIC(Go)OTE(Q);"], MAIN[:1], m1 + tag("GoA", "BOOL"), AXES, q))
+    m1 = (
+        '<Tag Name="M1" TagType="Base" DataType="Mover"><Data Format="Decorated"><Structure DataType="Mover">'
+        '<DataValueMember Name="Q" DataType="BOOL" Value="1"/></Structure></Data></Tag>\n'
+    )
+    ctl = controller(
+        tmp_path, project(["XIC(Go)OTE(Q);"], MAIN[:1], m1 + tag("GoA", "BOOL"), AXES, q)
+    )
     assert ctl.reference("Program:MainProgram.M1.Q")[0]() == 0

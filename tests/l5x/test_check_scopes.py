@@ -83,27 +83,41 @@ SCOPES = {
 def test_same_name_in_several_programs_gets_each_programs_diagnostics(tmp_path: Path) -> None:
     # checked twice over, in both orders, so every scope is also entered after every other one
     order = list(SCOPES.items()) + list(reversed(SCOPES.items()))
-    body = "".join(PROGRAM.format(name=f"{name}{k}", tags=tags) for k, (name, tags) in enumerate(order))
+    body = "".join(
+        PROGRAM.format(name=f"{name}{k}", tags=tags) for k, (name, tags) in enumerate(order)
+    )
     path = tmp_path / "scopes.L5X"
     path.write_text(HEAD + body + TAIL)
     loaded = load([path])
     # the name suggestion is beside the point here (it draws on every program's tags)
-    found = sorted((d.code, re.sub(r" \(did you mean '\w+'\?\)", "", d.message)) for d in loaded.diagnostics)
+    found = sorted(
+        (d.code, re.sub(r" \(did you mean '\w+'\?\)", "", d.message)) for d in loaded.diagnostics
+    )
     expected = []
     for k, (name, _) in enumerate(order):
         where = f" (program {name}{k}, routine Main, rung "
         if name == "PA":  # X is a TIMER: not a bit for XIC, right for TON; Loc is its own BOOL
-            expected.append(("E105", "XIC operand DataBit does not accept TIMER (accepts BOOL)" + where + "0)"))
+            expected.append(
+                ("E105", "XIC operand DataBit does not accept TIMER (accepts BOOL)" + where + "0)")
+            )
         elif name == "PB":  # X is a BOOL: right for XIC, not a timer; Loc is not declared here
             expected.append(("E101", "undefined tag 'Loc'" + where + "0)"))
-            expected.append(("E105", "TON operand Timer does not accept BOOL (accepts TIMER)" + where + "1)"))
+            expected.append(
+                ("E105", "TON operand Timer does not accept BOOL (accepts TIMER)" + where + "1)")
+            )
         else:  # X is the controller's DINT: wrong for both; no Loc either
-            expected.append(("E105", "XIC operand DataBit does not accept DINT (accepts BOOL)" + where + "0)"))
+            expected.append(
+                ("E105", "XIC operand DataBit does not accept DINT (accepts BOOL)" + where + "0)")
+            )
             expected.append(("E101", "undefined tag 'Loc'" + where + "0)"))
-            expected.append(("E105", "TON operand Timer does not accept DINT (accepts TIMER)" + where + "1)"))
+            expected.append(
+                ("E105", "TON operand Timer does not accept DINT (accepts TIMER)" + where + "1)")
+            )
     # inside Bump, X is its REAL local and the controller's Only does not exist (reported once:
     # a definition is checked once, however many programs use its name); Bump2's X is a BOOL
     where = " (add-on instruction Bump, routine Logic, rung "
-    expected.append(("E105", "XIC operand DataBit does not accept REAL (accepts BOOL)" + where + "0)"))
+    expected.append(
+        ("E105", "XIC operand DataBit does not accept REAL (accepts BOOL)" + where + "0)")
+    )
     expected.append(("E101", "undefined tag 'Only'" + where + "1)"))
     assert found == sorted(expected)

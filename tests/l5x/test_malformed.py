@@ -75,13 +75,17 @@ def test_unknown_data_type_is_a_verification_error(capsys: pytest.CaptureFixture
     assert "NO_SUCH_TYPE" in diags[0]["message"]
 
 
-def test_fbd_sfc_and_protected_routines_are_not_supported(capsys: pytest.CaptureFixture[str]) -> None:
+def test_fbd_sfc_and_protected_routines_are_not_supported(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     code, diags, _ = check(capsys, "unsupported.L5X")
     assert code == 1
     assert [(d["code"], d["line"]) for d in diags] == [("U301", 14), ("U301", 19), ("U302", 22)]
 
 
-def test_run_of_a_malformed_export_exits_1_with_diagnostics(capsys: pytest.CaptureFixture[str]) -> None:
+def test_run_of_a_malformed_export_exits_1_with_diagnostics(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     capsys.readouterr()
     code = main(["run", str(FIX / "truncated.L5X"), "--scans", "1"])
     err = capsys.readouterr().err
@@ -89,7 +93,9 @@ def test_run_of_a_malformed_export_exits_1_with_diagnostics(capsys: pytest.Captu
     assert "S007" in err and "Traceback" not in err
 
 
-def test_st_positions_are_file_positions_with_studio_line_numbers(capsys: pytest.CaptureFixture[str]) -> None:
+def test_st_positions_are_file_positions_with_studio_line_numbers(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     code, diags, _ = check(capsys, "st_errors.L5X")
     assert code == 1
     # Line 16 of the file holds ST line 1 `  Missing := 2;` whose CDATA content starts in
@@ -103,7 +109,9 @@ def test_st_positions_are_file_positions_with_studio_line_numbers(capsys: pytest
     assert "line 2)" in s001["message"]
 
 
-def test_other_files_with_an_l5x_are_refused(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_other_files_with_an_l5x_are_refused(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     st = tmp_path / "a.st"
     st.write_text("VAR x : DINT; END_VAR\nx := 1;\n")
     capsys.readouterr()
@@ -112,33 +120,47 @@ def test_other_files_with_an_l5x_are_refused(capsys: pytest.CaptureFixture[str],
     assert "whole project" in capsys.readouterr().err
 
 
-def test_run_of_an_export_without_programs_scans_nothing(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_run_of_an_export_without_programs_scans_nothing(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     # An Add-On Instruction export (or a controller with no programs) used to crash `run`
     # looking up a main routine that does not exist. With no program there is nothing to
     # scan: the 3 scans run empty, and the one controller tag keeps its initial value 7.
     p = tmp_path / "no_programs.L5X"
-    p.write_text('<?xml version="1.0" encoding="UTF-8" standalone="yes"?>\n'
-                 '<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="32.00" TargetName="T" TargetType="Controller">\n'
-                 '<Controller Use="Target" Name="T">\n'
-                 '<Tags><Tag Name="K" TagType="Base" DataType="DINT"><Data Format="Decorated">\n'
-                 '<DataValue DataType="DINT" Radix="Decimal" Value="7"/></Data></Tag></Tags>\n'
-                 '</Controller>\n'
-                 '</RSLogix5000Content>\n')
+    p.write_text(
+        '<?xml version="1.0" encoding="UTF-8" standalone="yes"?>\n'
+        '<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="32.00" TargetName="T" TargetType="Controller">\n'
+        '<Controller Use="Target" Name="T">\n'
+        '<Tags><Tag Name="K" TagType="Base" DataType="DINT"><Data Format="Decorated">\n'
+        '<DataValue DataType="DINT" Radix="Decimal" Value="7"/></Data></Tag></Tags>\n'
+        "</Controller>\n"
+        "</RSLogix5000Content>\n"
+    )
     capsys.readouterr()
     code = main(["run", str(p), "--scans", "3", "--json"])
     cap = capsys.readouterr()
     assert code == 0, cap.err
-    assert json.loads(cap.out) == {"time": 0.003, "scans": 3, "tags": {"K": 7}, "faults": [], "diagnostics": []}
+    assert json.loads(cap.out) == {
+        "time": 0.003,
+        "scans": 3,
+        "tags": {"K": 7},
+        "faults": [],
+        "diagnostics": [],
+    }
 
 
 @pytest.mark.parametrize("encoding", ["x", "utf-32", "punycode", "rot13"])
-def test_unreadable_declared_encoding(capsys: pytest.CaptureFixture[str], tmp_path: Path, encoding: str) -> None:
+def test_unreadable_declared_encoding(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path, encoding: str
+) -> None:
     # expat hands encodings it does not know itself to Python's codecs, which raised
     # LookupError/ValueError out of the reader (a traceback). Now S007 at the encoding's value:
     # `<?xml version="1.0" encoding="` is 30 characters, so the value starts in column 31.
     p = tmp_path / "enc.L5X"
-    p.write_text(f'<?xml version="1.0" encoding="{encoding}"?>\n'
-                 '<RSLogix5000Content SchemaRevision="1.0"><Controller Name="T"/></RSLogix5000Content>\n')
+    p.write_text(
+        f'<?xml version="1.0" encoding="{encoding}"?>\n'
+        '<RSLogix5000Content SchemaRevision="1.0"><Controller Name="T"/></RSLogix5000Content>\n'
+    )
     capsys.readouterr()
     code = main(["check", str(p), "--format", "json"])
     diags = json.loads(capsys.readouterr().out)

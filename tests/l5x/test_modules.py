@@ -28,9 +28,22 @@ def test_module_tags_are_named_as_studio_names_them() -> None:
     # Slot modules of the controller's chassis take Local:<slot>; the adapter on Ethernet
     # its own name; the POINT module in slot 1 behind it Rack3:1 with its suffix I1. The
     # controller (no Communications) has none; Rack3_Input (slot 2) has only L5K data.
-    assert names == ["Local:1:C", "Local:1:I", "Local:2:I", "Local:2:O", "Rack3:I", "Rack3:O", "Rack3:1:I1"]
-    assert project.modules == {"LOCAL:1": "DigitalIn", "LOCAL:2": "AnalogOut", "RACK3": "Rack3",
-                               "RACK3:1": "Rack3_Counter", "RACK3:2": "Rack3_Input"}
+    assert names == [
+        "Local:1:C",
+        "Local:1:I",
+        "Local:2:I",
+        "Local:2:O",
+        "Rack3:I",
+        "Rack3:O",
+        "Rack3:1:I1",
+    ]
+    assert project.modules == {
+        "LOCAL:1": "DigitalIn",
+        "LOCAL:2": "AnalogOut",
+        "RACK3": "Rack3",
+        "RACK3:1": "Rack3_Counter",
+        "RACK3:2": "Rack3_Input",
+    }
 
 
 def test_module_types_come_from_the_decorated_structures() -> None:
@@ -39,8 +52,12 @@ def test_module_types_come_from_the_decorated_structures() -> None:
     t = model.tags["LOCAL:2:I"].type
     assert isinstance(t, StructType) and t.name == "AB:1756_OF4_Float:I:0"
     assert [(m, str(mt)) for m, mt in t.members] == [
-        ("ChannelFaults", "INT"), ("Ch0Fault", "BOOL"), ("Ch1Fault", "BOOL"),
-        ("Status", "AB:1756_OF4_Status:I:0"), ("Ch", "AB:1756_OF4_Channel:I:0[2]"), ("CSTTimestamp", "LINT"),
+        ("ChannelFaults", "INT"),
+        ("Ch0Fault", "BOOL"),
+        ("Ch1Fault", "BOOL"),
+        ("Status", "AB:1756_OF4_Status:I:0"),
+        ("Ch", "AB:1756_OF4_Channel:I:0[2]"),
+        ("CSTTimestamp", "LINT"),
     ]
     ch = t.members[4][1]
     assert isinstance(ch, ArrayType) and isinstance(ch.elem, StructType)
@@ -52,10 +69,14 @@ def test_module_types_come_from_the_decorated_structures() -> None:
 def test_members_are_merged_over_modules_of_one_type(tmp_path: Path) -> None:
     # Two modules show the same type name with different members: the type has both.
     text = MODULES.read_text()
-    extra = text.replace('<DataValueMember Name="Counts" DataType="DINT" Radix="Decimal" Value="1234"/>',
-                         '<DataValueMember Name="Counts" DataType="DINT" Radix="Decimal" Value="1234"/>'
-                         '<DataValueMember Name="Rate" DataType="REAL" Radix="Float" Value="0.5"/>')
-    extra = extra.replace('<Structure DataType="AB:1756_DI:I:0">', '<Structure DataType="AB:1734_VHSC:I:0">', 1)
+    extra = text.replace(
+        '<DataValueMember Name="Counts" DataType="DINT" Radix="Decimal" Value="1234"/>',
+        '<DataValueMember Name="Counts" DataType="DINT" Radix="Decimal" Value="1234"/>'
+        '<DataValueMember Name="Rate" DataType="REAL" Radix="Float" Value="0.5"/>',
+    )
+    extra = extra.replace(
+        '<Structure DataType="AB:1756_DI:I:0">', '<Structure DataType="AB:1734_VHSC:I:0">', 1
+    )
     path = tmp_path / "merged.L5X"
     path.write_text(extra)
     model, _ = build_project(read(path))
@@ -71,8 +92,22 @@ def test_project_with_modules_checks_clean(capsys: pytest.CaptureFixture[str]) -
 
 
 def test_inputs_read_their_exported_values(capsys: pytest.CaptureFixture[str]) -> None:
-    tags = run(capsys, MODULES, 1, "InWord", "Local:2:O.Ch0Data", "Echo", "Rack3:O.Data[0]", "Rack3:O.Data[3]",
-               "Counts", "Counter.Ones", "Lamp", "Slot1Bits", "Local:1:C.COSOnOffEn", "Local:2:I.Status.Ch0HoldInitValue")
+    tags = run(
+        capsys,
+        MODULES,
+        1,
+        "InWord",
+        "Local:2:O.Ch0Data",
+        "Echo",
+        "Rack3:O.Data[0]",
+        "Rack3:O.Data[3]",
+        "Counts",
+        "Counter.Ones",
+        "Lamp",
+        "Slot1Bits",
+        "Local:1:C.COSOnOffEn",
+        "Local:2:I.Status.Ch0HoldInitValue",
+    )
     assert tags == {
         "InWord": 40,  # Local:1:I.Data = 2#10_1000 = 32 + 8
         "Local:2:O.Ch0Data": 12.5,  # bit 3 of 40 is set, so Main writes 12.5
@@ -89,8 +124,16 @@ def test_inputs_read_their_exported_values(capsys: pytest.CaptureFixture[str]) -
 
 
 def test_set_changes_module_inputs(capsys: pytest.CaptureFixture[str]) -> None:
-    tags = run(capsys, MODULES, 1, "InWord", "Local:2:O.Ch0Data", "Counter.Ones", "Lamp",
-               extra=("--set", "Local:1:I.Data=0", "--set", "Local:1:I.Data.5=1"))
+    tags = run(
+        capsys,
+        MODULES,
+        1,
+        "InWord",
+        "Local:2:O.Ch0Data",
+        "Counter.Ones",
+        "Lamp",
+        extra=("--set", "Local:1:I.Data=0", "--set", "Local:1:I.Data.5=1"),
+    )
     # Data = 0 then bit 5 = 1: Data = 32, bit 3 clear so Ch0Data keeps its exported 0.0
     assert tags == {"InWord": 32, "Local:2:O.Ch0Data": 0.0, "Counter.Ones": 1, "Lamp": True}
 
@@ -102,7 +145,21 @@ def test_watch_shows_module_structures(capsys: pytest.CaptureFixture[str]) -> No
         "Local:2:I.Ch": [{"Data": 1.5, "InHold": False}, {"Data": -2.25, "InHold": True}],
     }
     capsys.readouterr()
-    assert main(["run", str(MODULES), "--scans", "1", "--watch", "Local:2:O.Ch0Data", "--watch", "Rack3:1:I1.Counts"]) == 0
+    assert (
+        main(
+            [
+                "run",
+                str(MODULES),
+                "--scans",
+                "1",
+                "--watch",
+                "Local:2:O.Ch0Data",
+                "--watch",
+                "Rack3:1:I1.Counts",
+            ]
+        )
+        == 0
+    )
     lines = capsys.readouterr().out.splitlines()
     assert lines == ["Local:2:O.Ch0Data  12.5", "Rack3:1:I1.Counts  1234"]
 
@@ -111,15 +168,25 @@ def test_tags_option_brings_module_tags(tmp_path: Path, capsys: pytest.CaptureFi
     # --tags takes controller tags and UDTs; the AOI-typed tag is left out of this copy
     # because controller_scope does not declare add-on instruction types.
     shared = tmp_path / "shared.L5X"
-    shared.write_text("".join(line for line in MODULES.read_text().splitlines(keepends=True) if 'DataType="CountOn"' not in line))
+    shared.write_text(
+        "".join(
+            line
+            for line in MODULES.read_text().splitlines(keepends=True)
+            if 'DataType="CountOn"' not in line
+        )
+    )
     st = tmp_path / "io.st"
     st.write_text("VAR Bits : DINT; END_VAR\nBits := Local:1:I.Data AND 16#F;\n")
     tags = run(capsys, st, 1, "Bits", extra=("--tags", str(shared)))
     assert tags == {"Bits": 8}  # 2#10_1000 AND 2#1111
 
 
-def test_undefined_module_tags_say_the_data_is_not_in_the_export(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    text = MODULES.read_text().replace("Counts := Rack3:1:I1.Counts;", "Counts := Rack3:2:I.Data + xPLC28:O.Pt08.Data;")
+def test_undefined_module_tags_say_the_data_is_not_in_the_export(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = MODULES.read_text().replace(
+        "Counts := Rack3:1:I1.Counts;", "Counts := Rack3:2:I.Data + xPLC28:O.Pt08.Data;"
+    )
     path = tmp_path / "missing.L5X"
     path.write_text(text)
     capsys.readouterr()

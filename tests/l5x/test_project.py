@@ -14,7 +14,13 @@ FIX = Path(__file__).parent / "fixtures"
 PROJECT = FIX / "st_project.L5X"
 
 
-def run(capsys: pytest.CaptureFixture[str], path: Path, scans: int, *watch: str, extra: tuple[str, ...] = ()) -> dict[str, Any]:
+def run(
+    capsys: pytest.CaptureFixture[str],
+    path: Path,
+    scans: int,
+    *watch: str,
+    extra: tuple[str, ...] = (),
+) -> dict[str, Any]:
     argv = ["run", str(path), "--scans", str(scans), "--json", *extra]
     for w in watch:
         argv += ["--watch", w]
@@ -32,14 +38,29 @@ def test_project_checks_clean(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_exported_data_becomes_initial_values(capsys: pytest.CaptureFixture[str]) -> None:
-    tags = run(capsys, PROJECT, 0, "Speed", "Shared", "Program:MainProgram.Shared", "V1.Open", "V1.Fault",
-               "V1.Count", "V1.Hist[1]", "Label", "Table[1,1]", "Program:MainProgram.Sc.Gain")
+    tags = run(
+        capsys,
+        PROJECT,
+        0,
+        "Speed",
+        "Shared",
+        "Program:MainProgram.Shared",
+        "V1.Open",
+        "V1.Fault",
+        "V1.Count",
+        "V1.Hist[1]",
+        "Label",
+        "Table[1,1]",
+        "Program:MainProgram.Sc.Gain",
+    )
     assert tags == {
         "Speed": 7,  # decorated DataValue
         "Shared": 16,  # Radix Hex 16#0000_0010
         "Program:MainProgram.Shared": 100,
-        "V1.Open": True, "V1.Fault": False,  # BIT members over the hidden SINT
-        "V1.Count": 3, "V1.Hist[1]": 20,  # ArrayMember elements
+        "V1.Open": True,
+        "V1.Fault": False,  # BIT members over the hidden SINT
+        "V1.Count": 3,
+        "V1.Hist[1]": 20,  # ArrayMember elements
         "Label": "abc",  # <Data Format="String">
         "Table[1,1]": 4,  # L5K [1,2,3,4] for DINT[2,2]: row-major, [1,1] is the 4th
         "Program:MainProgram.Sc.Gain": 2.0,  # the AOI parameter's default
@@ -47,9 +68,20 @@ def test_exported_data_becomes_initial_values(capsys: pytest.CaptureFixture[str]
 
 
 def test_scopes_jsr_tasks_and_aoi(capsys: pytest.CaptureFixture[str]) -> None:
-    tags = run(capsys, PROJECT, 25, "Speed", "Shared", "Program:MainProgram.Shared", "Program:Fast.Runs", "Ticks",
-               "Program:MainProgram.Result", "Program:MainProgram.Counted", "Program:MainProgram.Sc.Out",
-               "Program:MainProgram.Sc.EnableOut")
+    tags = run(
+        capsys,
+        PROJECT,
+        25,
+        "Speed",
+        "Shared",
+        "Program:MainProgram.Shared",
+        "Program:Fast.Runs",
+        "Ticks",
+        "Program:MainProgram.Result",
+        "Program:MainProgram.Counted",
+        "Program:MainProgram.Sc.Out",
+        "Program:MainProgram.Sc.EnableOut",
+    )
     # MainTask (continuous) runs MainProgram every scan: Main adds 1 to the program's own
     # Shared (shadowing the controller tag) and JSRs Sub, which adds 2 to Speed. The
     # routine Unused and the unscheduled program Idle never run (they would zero Speed).
@@ -73,7 +105,13 @@ def test_aliases_share_storage(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_set_a_program_tag(capsys: pytest.CaptureFixture[str]) -> None:
-    tags = run(capsys, PROJECT, 1, "Program:MainProgram.Shared", extra=("--set", "Program:MainProgram.Shared=5"))
+    tags = run(
+        capsys,
+        PROJECT,
+        1,
+        "Program:MainProgram.Shared",
+        extra=("--set", "Program:MainProgram.Shared=5"),
+    )
     assert tags["Program:MainProgram.Shared"] == 6
 
 
@@ -91,14 +129,18 @@ def test_default_watch_lists_program_tags_qualified(capsys: pytest.CaptureFixtur
     assert "Program:Fast.Runs" in out and "Program:MainProgram.Shared" in out
 
 
-def test_tags_file_supplies_controller_tags_and_types(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_tags_file_supplies_controller_tags_and_types(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     st = tmp_path / "bare.st"
     st.write_text("Speed := Speed + V1.Count;\nV1.Fault := TRUE;\n")
     tags = run(capsys, st, 2, "Speed", "V1.Fault", extra=("--tags", str(PROJECT)))
     assert tags == {"Speed": 7 + 3 + 3, "V1.Fault": True}
 
 
-def test_tags_file_gives_no_program_tags(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_tags_file_gives_no_program_tags(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     st = tmp_path / "bare.st"
     st.write_text("Result := 1.0;\n")
     capsys.readouterr()

@@ -50,7 +50,9 @@ COMMITTED_CODES = {
 @pytest.mark.parametrize("name", sorted(COMMITTED_CODES))
 def test_committed_public_export(name: str) -> None:
     loaded = load([COMMITTED / name])
-    assert [d.code for d in loaded.diagnostics] == COMMITTED_CODES[name], [d.text() for d in loaded.diagnostics]
+    assert [d.code for d in loaded.diagnostics] == COMMITTED_CODES[name], [
+        d.text() for d in loaded.diagnostics
+    ]
 
 
 @pytest.mark.skipif(not FILES, reason=f"no L5X corpus in {CORPUS}")
@@ -70,10 +72,17 @@ MODELLED_TYPES = ("MESSAGE", "PID", "ALARM_DIGITAL", "ALARM_ANALOG")
 @pytest.mark.parametrize("path", FILES, ids=[p.name for p in FILES])
 def test_public_export_has_no_module_tag_or_predefined_type_gaps(path: Path) -> None:
     loaded = load([path])
-    gaps = [d.text() for d in loaded.diagnostics
-            if d.code == "E119" and any(f"'{t}'" in d.message for t in MODELLED_TYPES)
-            or d.code == "E119" and ":" in d.message.split("'")[1]
-            or d.code == "E101" and ":" in d.message.split("'")[1] and "not in the export" not in d.message]
+    gaps = [
+        d.text()
+        for d in loaded.diagnostics
+        if d.code == "E119"
+        and any(f"'{t}'" in d.message for t in MODELLED_TYPES)
+        or d.code == "E119"
+        and ":" in d.message.split("'")[1]
+        or d.code == "E101"
+        and ":" in d.message.split("'")[1]
+        and "not in the export" not in d.message
+    ]
     assert gaps == []
 
 

@@ -35,12 +35,19 @@ def test_udt_bits_become_bool_members_and_the_host_is_dropped() -> None:
     assert diags == []
     valve = next(t for t in p.types if t.name == "Valve")
     members = [(m.names[0][0], m.type.name, m.type.dims) for m in valve.members]
-    assert members == [("Open", "BOOL", []), ("Fault", "BOOL", []), ("Count", "DINT", []), ("Hist", "INT", [(0, 2)])]
+    assert members == [
+        ("Open", "BOOL", []),
+        ("Fault", "BOOL", []),
+        ("Count", "DINT", []),
+        ("Hist", "INT", [(0, 2)]),
+    ]
 
 
 def test_tasks_and_programs() -> None:
     p, _ = read("st_project.L5X")
-    assert [(t.name, t.type, t.rate_ms, t.priority, [x for x, _ in t.programs]) for t in p.tasks] == [
+    assert [
+        (t.name, t.type, t.rate_ms, t.priority, [x for x, _ in t.programs]) for t in p.tasks
+    ] == [
         ("MainTask", "CONTINUOUS", 10.0, 10, ["MainProgram"]),
         ("Every10", "PERIODIC", 10.0, 5, ["Fast"]),
     ]
@@ -69,7 +76,9 @@ def test_rungs_keep_file_positions_numbers_and_comments() -> None:
     assert rungs[0].comment == "Seal in"
     line = line_of("rll_project.L5X", "[XIC(Start) ,XIC(Run) ]OTE(Run)")
     assert (rungs[0].span.line, rungs[0].span.col) == (line, 10)
-    assert [(d.code, d.span.line, d.span.col) for d in diags] == [("S006", line_of("rll_project.L5X", "[XIC(Start),XIC(Run)OTE"), 10)]
+    assert [(d.code, d.span.line, d.span.col) for d in diags] == [
+        ("S006", line_of("rll_project.L5X", "[XIC(Start),XIC(Run)OTE"), 10)
+    ]
     assert "rung 2" in diags[0].message
 
 
@@ -91,17 +100,20 @@ def test_l5k_timer_data_is_unpacked() -> None:
     assert values == {"PRE": 500, "ACC": 0, "EN": 0, "TT": 0, "DN": 0}
 
 
-@pytest.mark.parametrize(("text", "radix", "dtype", "value"), [
-    ("42", "Decimal", "DINT", 42),
-    ("-7", "Decimal", "INT", -7),
-    ("16#0000_00ff", "Hex", "DINT", 255),
-    ("16#ffff_ffff", "Hex", "DINT", -1),  # a bit pattern: DINT -1
-    ("2#0000_0101", "Binary", "SINT", 5),
-    ("8#17", "Octal", "DINT", 15),
-    ("'AB'", "ASCII", "INT", 0x4142),
-    ("1.5", "Float", "REAL", 1.5),
-    ("1.50000000e+002", "Exponential", "REAL", 150.0),
-])
+@pytest.mark.parametrize(
+    ("text", "radix", "dtype", "value"),
+    [
+        ("42", "Decimal", "DINT", 42),
+        ("-7", "Decimal", "INT", -7),
+        ("16#0000_00ff", "Hex", "DINT", 255),
+        ("16#ffff_ffff", "Hex", "DINT", -1),  # a bit pattern: DINT -1
+        ("2#0000_0101", "Binary", "SINT", 5),
+        ("8#17", "Octal", "DINT", 15),
+        ("'AB'", "ASCII", "INT", 0x4142),
+        ("1.5", "Float", "REAL", 1.5),
+        ("1.50000000e+002", "Exponential", "REAL", 150.0),
+    ],
+)
 def test_decorated_values_in_every_radix(text: str, radix: str, dtype: str, value: object) -> None:
     assert parse_value(text, radix, dtype) == value
 
@@ -118,7 +130,9 @@ def test_xml_positions_are_characters_not_bytes() -> None:
 
 def test_doctype_is_refused_at_its_position() -> None:
     with pytest.raises(XmlRejected) as exc:
-        parse_xml(b'<?xml version="1.0"?>\n<!DOCTYPE a SYSTEM "http://example.invalid/x.dtd">\n<a/>')
+        parse_xml(
+            b'<?xml version="1.0"?>\n<!DOCTYPE a SYSTEM "http://example.invalid/x.dtd">\n<a/>'
+        )
     assert exc.value.line == 2
 
 
@@ -131,6 +145,10 @@ def test_context_exports_with_studio_details_read_without_syntax_errors() -> Non
     pair = p.tags[0].init
     assert isinstance(pair, n.StructInit)
     # L5K [8, 1094861636, 8]: the hidden SINT host is 8 = bit 3 set, so Flag (BitNumber 3) = 1
-    assert {name: v.value for name, _, v in pair.members} == {"Flag": 1, "Code": 1094861636, "Mode": 8}  # type: ignore[union-attr]
+    assert {name: v.value for name, _, v in pair.members} == {
+        "Flag": 1,
+        "Code": 1094861636,
+        "Mode": 8,
+    }  # type: ignore[union-attr]
     assert p.tags[1].init.value == b"ok"  # type: ignore[union-attr]
     assert [r.number for r in p.programs[0].routines[0].rungs] == [7, 8]

@@ -28,8 +28,13 @@ def load_ladder(*routines: n.Routine) -> Loaded:
     return Loaded(model, analysis, [])
 
 
-def run(decls: str, rungs: list[str], scans: int = 1, sets: dict[str, Any] | None = None,
-        per_scan: list[dict[str, Any]] | None = None) -> Controller:
+def run(
+    decls: str,
+    rungs: list[str],
+    scans: int = 1,
+    sets: dict[str, Any] | None = None,
+    per_scan: list[dict[str, Any]] | None = None,
+) -> Controller:
     ctl = Controller(load_ladder(routine("main", decls, rungs)))
     for k, v in (sets or {}).items():
         ctl.reference(k)[2](v)
@@ -53,7 +58,11 @@ def test_series_and_parallel_contacts() -> None:
     for a in (0, 1):
         for b in (0, 1):
             for c in (0, 1):
-                ctl = run(DECL, ["XIC(a)[XIC(b),XIO(c)]OTE(q);", "XIO(a)OTE(q2);"], sets={"a": a, "b": b, "c": c})
+                ctl = run(
+                    DECL,
+                    ["XIC(a)[XIC(b),XIO(c)]OTE(q);", "XIO(a)OTE(q2);"],
+                    sets={"a": a, "b": b, "c": c},
+                )
                 assert get(ctl, "q") == (1 if a and (b or not c) else 0)
                 assert get(ctl, "q2") == (0 if a else 1)
 
@@ -87,7 +96,13 @@ def test_latch_unlatch_and_prescan_clears_ote_only() -> None:
 
 def test_mcr_zone_false_drops_outputs_inside_only() -> None:
     decl = "VAR zone, a, inside, after, latched : BOOL; END_VAR\n"
-    rungs = ["XIC(zone)MCR();", "XIC(a)OTE(inside);", "XIC(a)OTL(latched);", "MCR();", "XIC(a)OTE(after);"]
+    rungs = [
+        "XIC(zone)MCR();",
+        "XIC(a)OTE(inside);",
+        "XIC(a)OTL(latched);",
+        "MCR();",
+        "XIC(a)OTE(after);",
+    ]
     on = run(decl, rungs, sets={"zone": 1, "a": 1})
     assert (get(on, "inside"), get(on, "latched"), get(on, "after")) == (1, 1, 1)
     # zone false: the OTE inside de-energises, the OTL keeps its state (it was never set:
@@ -154,13 +169,21 @@ def test_mov_sets_math_flags_and_wraps() -> None:
     ctl = run(decl, ["MOV(src, s) XIC(S:N) OTE(neg);", "XIC(S:Z) OTE(zero);", "XIC(S:V) OTE(ovf);"])
     assert (get(ctl, "s"), get(ctl, "neg"), get(ctl, "zero"), get(ctl, "ovf")) == (-56, 1, 0, 1)
     # the overflow is also minor fault 4/4 at the MOV (line 2, column 1; the header is line 1)
-    assert [(f.type, f.code, f.major, f.line, f.column) for f in ctl.faults()] == [(4, 4, False, 2, 1)]
+    assert [(f.type, f.code, f.major, f.line, f.column) for f in ctl.faults()] == [
+        (4, 4, False, 2, 1)
+    ]
 
 
 def test_compares_at_the_equal_boundary_and_mixed_types() -> None:
     decl = "VAR i : INT := 5; r : REAL := 5.0; le, ge, lt, gt, eq, ne : BOOL; END_VAR\n"
-    rungs = ["LEQ(i, r) OTE(le);", "GEQ(i, r) OTE(ge);", "LES(i, r) OTE(lt);", "GRT(i, r) OTE(gt);",
-             "EQU(i, 5) OTE(eq);", "NEQ(r, 5) OTE(ne);"]
+    rungs = [
+        "LEQ(i, r) OTE(le);",
+        "GEQ(i, r) OTE(ge);",
+        "LES(i, r) OTE(lt);",
+        "GRT(i, r) OTE(gt);",
+        "EQU(i, 5) OTE(eq);",
+        "NEQ(r, 5) OTE(ne);",
+    ]
     ctl = run(decl, rungs)
     assert [get(ctl, x) for x in ("le", "ge", "lt", "gt", "eq", "ne")] == [1, 1, 0, 0, 1, 0]
 
@@ -233,7 +256,9 @@ def test_transitional_call_contract(monkeypatch) -> None:  # type: ignore[no-unt
 
     calls: list[bool] = []
     registry.load_all()  # the real modules register first; this test's stand-in then wins
-    monkeypatch.setitem(registry.IMPLEMENTATIONS, "MSO@rll", lambda ctx, rung, axis, mc: calls.append(rung))
+    monkeypatch.setitem(
+        registry.IMPLEMENTATIONS, "MSO@rll", lambda ctx, rung, axis, mc: calls.append(rung)
+    )
     decl = "VAR go : BOOL; ax : AXIS_VIRTUAL; mc : MOTION_INSTRUCTION; END_VAR\n"
     seq = [1, 1, 0, 0, 1, 1, 1, 0]
     ctl = run(decl, ["XIC(go) MSO(ax, mc);"], scans=len(seq), per_scan=[{"go": g} for g in seq])
@@ -256,7 +281,9 @@ def test_rcall_result_is_the_rung_out_and_prescan_actions_run() -> None:
 
 
 def test_endless_backward_jump_faults_the_watchdog() -> None:
-    r = routine("main", "VAR n : DINT; END_VAR\n", ["CPT(n, 0);", "LBL(top) CPT(n, n + 1);", "  JMP(top);"])
+    r = routine(
+        "main", "VAR n : DINT; END_VAR\n", ["CPT(n, 0);", "LBL(top) CPT(n, n + 1);", "  JMP(top);"]
+    )
     ctl = Controller(load_ladder(r), watchdog=1000)
     ctl.prescan()
     assert not ctl.scan()

@@ -20,13 +20,17 @@ from tests.conftest import Runner
 COUNT = "CPT(k, k + 1);"  # the last rung of the stimulus programs
 
 
-def tags(st: Runner, src: str, *watch: str, scans: int = 1, args: tuple[str, ...] = ()) -> dict[str, Any]:
+def tags(
+    st: Runner, src: str, *watch: str, scans: int = 1, args: tuple[str, ...] = ()
+) -> dict[str, Any]:
     r = st.run(src, *watch, scans=scans, args=args, name="main.rll")
     assert r.code == 0, (r.code, r.err, r.out)
     return r.tags
 
 
-def trace(st: Runner, src: str, watch: list[str], scans: int, files: dict[str, str] | None = None) -> dict[str, list[float]]:
+def trace(
+    st: Runner, src: str, watch: list[str], scans: int, files: dict[str, str] | None = None
+) -> dict[str, list[float]]:
     """Per-scan values of `watch` (one list per expression, index = scan)."""
     main = st.write("main.rll", src)
     extra = [str(st.write(name, text)) for name, text in (files or {}).items()]
@@ -80,8 +84,14 @@ def test_branches_nested_three_deep(st: Runner) -> None:
         q = a and ((b and middle) or not b)
         # rung 2: o3 sees a.b.c; o3b a.b.c.NOT d; the inner branch ORs to a.b.c, so o2 = a.b.c;
         # the middle branch is a.b.c OR a.b.NOT c = a.b = o1; the outer a.b OR a.NOT b = a = q2
-        expect = {"q": q, "o3": a and b and c, "o3b": a and b and c and not d, "o2": a and b and c,
-                  "o1": a and b, "q2": a}
+        expect = {
+            "q": q,
+            "o3": a and b and c,
+            "o3b": a and b and c and not d,
+            "o2": a and b and c,
+            "o1": a and b,
+            "q2": a,
+        }
         for name, value in expect.items():
             assert t[name][k] == (1 if value else 0), (name, k)
     # a few rows of rung 1 written out: k = 1 (a only): NOT b -> 1; k = 3 (a, b; c = 0,
@@ -137,8 +147,18 @@ def test_compares_at_the_equal_boundary_and_in_the_promoted_type(st: Runner) -> 
     # r01 holds float32(0.1); the literal 0.1 in a REAL compare is float32(0.1) too: equal.
     # LREAL 0.1 (double) vs REAL r01 compares in LREAL: float32(0.1) = 0.100000001490116...
     # differs from the double 0.1: not equal.
-    assert t == {"le": True, "ge": True, "lt": False, "gt": False, "eq": True, "ne": False,
-                 "mix_ge": False, "mix_le": True, "eq32": True, "eq64": False}
+    assert t == {
+        "le": True,
+        "ge": True,
+        "lt": False,
+        "gt": False,
+        "eq": True,
+        "ne": False,
+        "mix_ge": False,
+        "mix_le": True,
+        "eq32": True,
+        "eq64": False,
+    }
 
 
 def test_cmp_expression_is_the_rung_condition(st: Runner) -> None:
@@ -196,8 +216,17 @@ def test_mov_converts_like_an_assignment_and_sets_flags(st: Runner) -> None:
     assert r.code == 0, r.err
     # 200 -> SINT -56: negative, overflow; 2.5 -> DINT 2 (ties to even): no flag;
     # 3.0e9 does not fit a DINT: overflow
-    assert r.tags == {"s": -56, "d": 2, "n1": True, "z1": False, "v1": True,
-                      "n2": False, "z2": False, "v2": False, "v3": True}
+    assert r.tags == {
+        "s": -56,
+        "d": 2,
+        "n1": True,
+        "z1": False,
+        "v1": True,
+        "n2": False,
+        "z2": False,
+        "v2": False,
+        "v3": True,
+    }
     # each overflow is also minor fault 4/4 at its MOV (lines 5 and 7)
     minors = [(f["type"], f["code"], f["line"]) for f in r.json["faults"]]
     assert minors == [(4, 4, 5), (4, 4, 7)]
@@ -215,7 +244,9 @@ def test_cpt_overflow_inside_the_expression_sets_v(st: Runner) -> None:
     CPT(d2, 2 + 3 * 4) XIC(S:V) OTE(v3);
     CPT(d3, big * 2) XIC(S:V) OTE(v4);
     """
-    r = st.run(src, "d1", "r1", "d2", "d3", "n1", "z1", "v1", "n2", "z2", "v2", "v3", "v4", name="main.rll")
+    r = st.run(
+        src, "d1", "r1", "d2", "d3", "n1", "z1", "v1", "n2", "z2", "v2", "v3", "v4", name="main.rll"
+    )
     assert r.code == 0, r.err
     # DINT: 1e9 * 4 = 4 000 000 000 wraps to 4 000 000 000 - 2^32 = -294 967 296, / 4 =
     # -73 741 824, which fits the DINT Dest: only the intermediate product overflowed.
@@ -223,9 +254,20 @@ def test_cpt_overflow_inside_the_expression_sets_v(st: Runner) -> None:
     # finite: again only the intermediate overflowed (Z from the stored 0.0).
     # 2 + 3 * 4 = 14: nothing overflows, V is cleared again.
     # 1e9 * 2 = 2 000 000 000 fits a DINT (max 2 147 483 647): no overflow.
-    assert r.tags == {"d1": -73741824, "r1": 0.0, "d2": 14, "d3": 2000000000,
-                      "n1": True, "z1": False, "v1": True, "n2": False, "z2": True, "v2": True,
-                      "v3": False, "v4": False}
+    assert r.tags == {
+        "d1": -73741824,
+        "r1": 0.0,
+        "d2": 14,
+        "d3": 2000000000,
+        "n1": True,
+        "z1": False,
+        "v1": True,
+        "n2": False,
+        "z2": True,
+        "v2": True,
+        "v3": False,
+        "v4": False,
+    }
     # one minor fault 4/4 per overflowing CPT, at the instruction (lines 5 and 6)
     minors = [(f["type"], f["code"], f["line"], f["count"]) for f in r.json["faults"]]
     assert minors == [(4, 4, 5, 1), (4, 4, 6, 1)]
@@ -261,7 +303,18 @@ def test_prescan_clears_ote_and_timer_bits_keeps_latches(st: Runner) -> None:
     XIC(never) OTL(lat);
     XIC(never) TON(t, 500, 0);
     """
-    args = ("--set", "coil=1", "--set", "lat=1", "--set", "t.ACC=40", "--set", "t.DN=1", "--set", "t.EN=1")
+    args = (
+        "--set",
+        "coil=1",
+        "--set",
+        "lat=1",
+        "--set",
+        "t.ACC=40",
+        "--set",
+        "t.DN=1",
+        "--set",
+        "t.EN=1",
+    )
     t = tags(st, src, "coil", "lat", "t", scans=0, args=args)
     # --set comes before the prescan: the OTE is cleared, the OTL is retentive, the TON
     # clears EN/TT/DN and ACC and takes its preset from the rung
@@ -333,7 +386,9 @@ def test_endless_backward_jump_trips_the_watchdog(st: Runner) -> None:
     f = r.json["faults"]
     # at the JMP: line 2, column 29 (the rung keeps its 4-space indent: dedent finds none
     # because the first line starts at the quotes)
-    assert [(x["type"], x["code"], x["major"], x["line"], x["column"]) for x in f] == [(6, 1, True, 2, 29)]
+    assert [(x["type"], x["code"], x["major"], x["line"], x["column"]) for x in f] == [
+        (6, 1, True, 2, 29)
+    ]
     # 3 instructions per pass: the check at the JMP of pass 1000 sees exactly 3000 (not
     # over), pass 1001 sees 3003: n = 1001 when the scan stops
     assert r.tags == {"n": 1001}
@@ -349,13 +404,41 @@ def test_tnd_ends_the_routine_and_returns_from_a_subroutine(st: Runner) -> None:
     sub = "TND();\nCPT(x, 1);\n"
     st.write("sub.rll", sub)
     main = st.write("main.rll", src)
-    r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--scans", "3", "--json",
-               "--watch", "n", "--watch", "m", "--watch", "after", "--watch", "x")
+    r = st.cli(
+        "run",
+        str(main),
+        str(st.tmp / "sub.rll"),
+        "--scans",
+        "3",
+        "--json",
+        "--watch",
+        "n",
+        "--watch",
+        "m",
+        "--watch",
+        "after",
+        "--watch",
+        "x",
+    )
     assert r.code == 0, r.err
     # no stop: every rung runs 3 times; the subroutine ends at its TND, so x stays 0
     assert r.tags == {"n": 3, "m": 3, "after": 3, "x": 0}
-    r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--scans", "3", "--json", "--set", "stop=1",
-               "--watch", "n", "--watch", "m", "--watch", "after")
+    r = st.cli(
+        "run",
+        str(main),
+        str(st.tmp / "sub.rll"),
+        "--scans",
+        "3",
+        "--json",
+        "--set",
+        "stop=1",
+        "--watch",
+        "n",
+        "--watch",
+        "m",
+        "--watch",
+        "after",
+    )
     assert r.tags == {"n": 3, "m": 0, "after": 0}
 
 
@@ -379,7 +462,9 @@ def test_jsr_with_parameters_between_ladder_and_st(st: Runner) -> None:
 
 
 def test_st_calls_a_ladder_subroutine(st: Runner) -> None:
-    main = st.write("main.st", "VAR v : DINT := 21; w : DINT; q : DINT; END_VAR\nJSR(twice, 1, v, w);\n")
+    main = st.write(
+        "main.st", "VAR v : DINT := 21; w : DINT; q : DINT; END_VAR\nJSR(twice, 1, v, w);\n"
+    )
     st.write("twice.rll", "SBR(q);\nCPT(q, q * 2);\nRET(q);\n")
     r = st.cli("run", str(main), str(st.tmp / "twice.rll"), "--json", "--watch", "w")
     assert r.code == 0, r.err
@@ -404,9 +489,12 @@ END_VAR
 
 
 def test_fal_all_mode(st: Runner) -> None:
-    src = FILE_VARS + f"""EQU(k, 0) FAL(ctl, 5, 0, ALL, dst[ctl.POS], src[ctl.POS] * 2 + 1);
+    src = (
+        FILE_VARS
+        + f"""EQU(k, 0) FAL(ctl, 5, 0, ALL, dst[ctl.POS], src[ctl.POS] * 2 + 1);
     {COUNT}
     """
+    )
     t = trace(st, src, ["dst[0]", "dst[4]", "ctl.POS", "ctl.DN", "ctl.EN"], 3)
     # scan 0: the whole array in one scan, 2 * src + 1 = [3, 15, 7, 15, 11], POS = LEN = 5, DN;
     # scan 1: the rung is false: EN off, DN cleared and POS back to 0 (re-armed)
@@ -417,9 +505,12 @@ def test_fal_all_mode(st: Runner) -> None:
 
 
 def test_fal_inc_mode_one_element_per_rising_edge(st: Runner) -> None:
-    src = FILE_VARS + f"""XIC(k.1) FAL(ctl, 3, 0, INC, dst[ctl.POS], src[ctl.POS] + 100);
+    src = (
+        FILE_VARS
+        + f"""XIC(k.1) FAL(ctl, 3, 0, INC, dst[ctl.POS], src[ctl.POS] + 100);
     {COUNT}
     """
+    )
     t = trace(st, src, ["ctl.POS", "ctl.DN", "dst[0]", "dst[1]", "dst[2]"], 16)
     # the rung (k.1) rises at k = 2, 6, 10, 14: one element each; the third one finishes
     # (POS = LEN = 3, DN); the rung falls at k = 12 and re-arms it (POS 0), so k = 14 starts over
@@ -429,10 +520,13 @@ def test_fal_inc_mode_one_element_per_rising_edge(st: Runner) -> None:
 
 
 def test_fsc_all_mode_finds_each_match(st: Runner) -> None:
-    src = FILE_VARS + f"""FSC(ctl, 5, 0, ALL, src[ctl.POS] = 7);
+    src = (
+        FILE_VARS
+        + f"""FSC(ctl, 5, 0, ALL, src[ctl.POS] = 7);
     XIC(ctl.FD) EQU(k, 1) OTU(ctl.IN);
     {COUNT}
     """
+    )
     t = trace(st, src, ["ctl.POS", "ctl.FD", "ctl.IN", "ctl.DN"], 4)
     # scan 0: first 7 at element 1 (FD, IN); scan 1: inhibited, then the second rung clears
     # IN; scan 2: resumes at element 2, next 7 at 3; scan 3: still inhibited
@@ -443,9 +537,12 @@ def test_fsc_all_mode_finds_each_match(st: Runner) -> None:
 
 
 def test_fsc_inc_mode_searches_one_element_per_transition(st: Runner) -> None:
-    src = FILE_VARS + f"""XIC(k.0) FSC(ctl, 5, 0, INC, src[ctl.POS] >= 5);
+    src = (
+        FILE_VARS
+        + f"""XIC(k.0) FSC(ctl, 5, 0, INC, src[ctl.POS] >= 5);
     {COUNT}
     """
+    )
     t = trace(st, src, ["ctl.POS", "ctl.FD"], 6)
     # rising edges at k = 1, 3, 5: element 0 (1 >= 5 no), element 1 (7: found, POS stays 1)
     assert bits(t["ctl.POS"]) == [0, 1, 1, 1, 1, 1]
@@ -453,13 +550,19 @@ def test_fsc_inc_mode_searches_one_element_per_transition(st: Runner) -> None:
 
 
 # ------------------------------------------------------------------ transitional edge
-def test_transitional_instruction_runs_on_the_rising_edge_only(st: Runner, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_transitional_instruction_runs_on_the_rising_edge_only(
+    st: Runner, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """The edge contract (HELPERS.md), with a stand-in MSO that logs its calls."""
     from interpreter.instructions import registry
 
     calls: list[tuple[float, bool]] = []
     registry.load_all()
-    monkeypatch.setitem(registry.IMPLEMENTATIONS, "MSO@rll", lambda ctx, rung, ax, mc: calls.append((ctx.now_ms, rung)))
+    monkeypatch.setitem(
+        registry.IMPLEMENTATIONS,
+        "MSO@rll",
+        lambda ctx, rung, ax, mc: calls.append((ctx.now_ms, rung)),
+    )
     src = f"""VAR k : DINT; ax : AXIS_VIRTUAL; mc : MOTION_INSTRUCTION; END_VAR
     [EQU(k, 0), EQU(k, 1), GEQ(k, 4)] MSO(ax, mc);
     {COUNT}
@@ -471,17 +574,24 @@ def test_transitional_instruction_runs_on_the_rising_edge_only(st: Runner, monke
     assert calls == [(0.0, True), (2.0, False), (3.0, False), (4.0, True)]
 
 
-def test_ladder_file_without_header_uses_tags_of_the_other_files(st: Runner, tmp_path: Path) -> None:
+def test_ladder_file_without_header_uses_tags_of_the_other_files(
+    st: Runner, tmp_path: Path
+) -> None:
     main = st.write("main.st", "VAR go, lamp : BOOL; END_VAR\nJSR(logic);\n")
     st.write("logic.rll", "XIC(go) OTE(lamp);\n")
-    r = st.cli("run", str(main), str(tmp_path / "logic.rll"), "--json", "--set", "go=1", "--watch", "lamp")
+    r = st.cli(
+        "run", str(main), str(tmp_path / "logic.rll"), "--json", "--set", "go=1", "--watch", "lamp"
+    )
     assert r.code == 0, r.err
     assert r.tags == {"lamp": True}
 
 
 def test_st_jsr_passes_expressions_into_a_ladder_subroutine(st: Runner) -> None:
-    main = st.write("main.st", "VAR a : DINT := 2; b : DINT := 3; r, p, q, s : DINT; END_VAR\n"
-                               "JSR(sub, 2, a + 1, b * 2, r);\n")
+    main = st.write(
+        "main.st",
+        "VAR a : DINT := 2; b : DINT := 3; r, p, q, s : DINT; END_VAR\n"
+        "JSR(sub, 2, a + 1, b * 2, r);\n",
+    )
     st.write("sub.rll", "SBR(p, q);\nCPT(s, p * 10 + q);\nRET(s);\n")
     r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--watch", "r")
     assert r.code == 0, r.err
@@ -490,10 +600,24 @@ def test_st_jsr_passes_expressions_into_a_ladder_subroutine(st: Runner) -> None:
 
 
 def test_st_tnd_and_first_scan_flag_in_ladder(st: Runner) -> None:
-    main = st.write("main.st", "VAR n, m, f : DINT; END_VAR\nn := n + 1;\nJSR(lad);\nTND();\nm := m + 1;\n")
+    main = st.write(
+        "main.st", "VAR n, m, f : DINT; END_VAR\nn := n + 1;\nJSR(lad);\nTND();\nm := m + 1;\n"
+    )
     st.write("lad.rll", "XIC(S:FS) CPT(f, f + 1);\n")
-    r = st.cli("run", str(main), str(st.tmp / "lad.rll"), "--scans", "3", "--json",
-               "--watch", "n", "--watch", "m", "--watch", "f")
+    r = st.cli(
+        "run",
+        str(main),
+        str(st.tmp / "lad.rll"),
+        "--scans",
+        "3",
+        "--json",
+        "--watch",
+        "n",
+        "--watch",
+        "m",
+        "--watch",
+        "f",
+    )
     assert r.code == 0, r.err
     # TND ends the ST routine before m; S:FS is true in the first normal scan only
     assert r.tags == {"n": 3, "m": 0, "f": 1}
@@ -505,7 +629,11 @@ def test_afi_makes_the_rest_of_the_rung_false(st: Runner) -> None:
     [AFI(), XIC(a)] OTE(q3);
     """
     # q1 sees a = 1 before the AFI; q2 after it is false; the branch is AFI OR a = 1
-    assert tags(st, src, "q1", "q2", "q3", args=("--set", "q2=1")) == {"q1": True, "q2": False, "q3": True}
+    assert tags(st, src, "q1", "q2", "q3", args=("--set", "q2=1")) == {
+        "q1": True,
+        "q2": False,
+        "q3": True,
+    }
 
 
 def test_subscript_fault_points_at_the_instruction(st: Runner) -> None:
@@ -517,15 +645,32 @@ def test_subscript_fault_points_at_the_instruction(st: Runner) -> None:
     # the first MOV is on a false rung: it does not run, so no subscript check (1756-PM004);
     # the second faults 4/20 at its mnemonic: line 3, column 11
     assert r.code == 3
-    assert [(f["type"], f["code"], f["line"], f["column"]) for f in r.json["faults"]] == [(4, 20, 3, 11)]
+    assert [(f["type"], f["code"], f["line"], f["column"]) for f in r.json["faults"]] == [
+        (4, 20, 3, 11)
+    ]
 
 
 def test_conveyor_sample_runs_as_its_comment_says(st: Runner) -> None:
     import numpy as np
 
     sample = Path(__file__).resolve().parents[2] / "samples" / "conveyor.rll"
-    r = st.cli("run", str(sample), "--duration", "6", "--set", "StartPB=1", "--json",
-               "--watch", "Motor", "--watch", "BoxCount.ACC", "--watch", "BatchDone", "--watch", "BeltMeters")
+    r = st.cli(
+        "run",
+        str(sample),
+        "--duration",
+        "6",
+        "--set",
+        "StartPB=1",
+        "--json",
+        "--watch",
+        "Motor",
+        "--watch",
+        "BoxCount.ACC",
+        "--watch",
+        "BatchDone",
+        "--watch",
+        "BeltMeters",
+    )
     assert r.code == 0, r.err
     # StartDelay (2000 ms) is done in scan 2000, so Motor is on from scan 2000. BoxGap starts
     # there: the eye covers at ACC = 400 (scan 2400); DN at 500 (scan 2500); the next scan's
@@ -543,24 +688,45 @@ def test_conveyor_sample_runs_as_its_comment_says(st: Runner) -> None:
 @pytest.mark.parametrize(
     ("rungs", "message", "line"),
     [
-        ("XIC(a)JMP(nowhere);\nLBL(here)NOP();\n", "no LBL(nowhere) in this routine (labels here: HERE)", 2),
+        (
+            "XIC(a)JMP(nowhere);\nLBL(here)NOP();\n",
+            "no LBL(nowhere) in this routine (labels here: HERE)",
+            2,
+        ),
         ("LBL(x)NOP();\nLBL(x)NOP();\n", "label 'x' is already defined on rung 0", 3),
         ("XIC(a)LBL(x)NOP();\nJMP(x);\n", "LBL(x) must be the first instruction of its rung", 2),
     ],
 )
-def test_label_errors_are_reported_before_running(st: Runner, rungs: str, message: str, line: int) -> None:
+def test_label_errors_are_reported_before_running(
+    st: Runner, rungs: str, message: str, line: int
+) -> None:
     r = st.run("VAR a : BOOL; END_VAR\n" + rungs, name="main.rll")
     assert r.code == 1
-    assert [(d["code"], d["message"], d["line"]) for d in r.json["diagnostics"]] == [("E131", message, line)]
+    assert [(d["code"], d["message"], d["line"]) for d in r.json["diagnostics"]] == [
+        ("E131", message, line)
+    ]
 
 
 def test_very_long_and_deeply_nested_rungs_compile(st: Runner) -> None:
     """Python refuses ~200 nested parentheses: long series and deep branches must still run."""
     series = " ".join(f"XIO(a[{i % 300}])" for i in range(1000)) + " OTE(q1);"
     # 150 nested branches, each [XIO(a[i]) [ ... ], XIC(a[i+1])]: all a are 0, so every XIO passes
-    nested = "".join(f"XIO(a[{i}])[XIC(a[{i + 1}])," for i in range(150)) + "NOP()" + "]" * 150 + " OTE(q2);"
-    outputs = "".join(f"XIO(a[{i}])[OTE(b[{i}]),XIC(a[{i}])" for i in range(150)) + "]" * 150 + " OTE(q3);"
-    src = "VAR a, b : BOOL[300]; q1, q2, q3 : BOOL; END_VAR\n" + "\n".join([series, nested, outputs]) + "\n"
+    nested = (
+        "".join(f"XIO(a[{i}])[XIC(a[{i + 1}])," for i in range(150))
+        + "NOP()"
+        + "]" * 150
+        + " OTE(q2);"
+    )
+    outputs = (
+        "".join(f"XIO(a[{i}])[OTE(b[{i}]),XIC(a[{i}])" for i in range(150))
+        + "]" * 150
+        + " OTE(q3);"
+    )
+    src = (
+        "VAR a, b : BOOL[300]; q1, q2, q3 : BOOL; END_VAR\n"
+        + "\n".join([series, nested, outputs])
+        + "\n"
+    )
     t = tags(st, src, "q1", "q2", "q3", "b[0]", "b[1]", "b[149]")
     # all a are 0: the XIO series passes (q1), the XIO path through the nested branches
     # passes (q2). In the third rung level i is XIO(a[i]) [OTE(b[i]), XIC(a[i]) <level i+1>]:
@@ -576,7 +742,9 @@ def test_return_values_missing_or_mismatched(st: Runner) -> None:
     r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--watch", "r")
     assert (r.code, r.tags) == (0, {"r": 5})
     # sel = 1: RET() hands back no value where the JSR expects one: fault 4/31 at the JSR
-    r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json", "--set", "sel=1", "--watch", "r")
+    r = st.cli(
+        "run", str(main), str(st.tmp / "sub.rll"), "--json", "--set", "sel=1", "--watch", "r"
+    )
     assert r.code == 3
     assert [(f["type"], f["code"], f["line"]) for f in r.json["faults"]] == [(4, 31, 2)]
 

@@ -42,13 +42,22 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "E105": ("XIC(a)TON(x,100,0);\n", "XIC(a)TON(t,100,0);\n"),
     "E106": ("XIC(a)MOV(x,5);\n", "XIC(a)MOV(5,x);\n"),
     "E107": ("XIC(a)TON(t,x,0);\n", "XIC(a)TON(t,100,0);\n"),
-    "E108": ("XIC(a)FAL(ctl,10,0,ALLL,arr[ctl.POS],x);\n", "XIC(a)FAL(ctl,10,0,ALL,arr[ctl.POS],x);\n"),
-    "E109": ("XIC(a)FAL(ctl,10,0,-5,arr[ctl.POS],x);\n", "XIC(a)FAL(ctl,10,0,INC,arr[ctl.POS],x);\n"),
+    "E108": (
+        "XIC(a)FAL(ctl,10,0,ALLL,arr[ctl.POS],x);\n",
+        "XIC(a)FAL(ctl,10,0,ALL,arr[ctl.POS],x);\n",
+    ),
+    "E109": (
+        "XIC(a)FAL(ctl,10,0,-5,arr[ctl.POS],x);\n",
+        "XIC(a)FAL(ctl,10,0,INC,arr[ctl.POS],x);\n",
+    ),
     "E110": ("MOV(arr[1,2],x);\n", "MOV(arr[1],x);\n"),
     "E112": ("XIC(a)MDAC(ax,ax,mc,0,0);\n", "XIC(a)MDAC(ax,ax2,mc,0,0);\n"),
     "E113": ("XIC(a)MSO(x,mc);\n", "XIC(a)MSO(ax,mc);\n"),
     "E116": ("CPT(x,s+1);\n", "CPT(x,y+1);\n"),
-    "E117": ("VAR\n  a : BOOL;\n  a : DINT;\nEND_VAR\nXIC(a)NOP();\n", "VAR\n  a : BOOL;\nEND_VAR\nXIC(a)NOP();\n"),
+    "E117": (
+        "VAR\n  a : BOOL;\n  a : DINT;\nEND_VAR\nXIC(a)NOP();\n",
+        "VAR\n  a : BOOL;\nEND_VAR\nXIC(a)NOP();\n",
+    ),
     "E119": ("VAR\n  a : NOTATYPE;\nEND_VAR\nNOP();\n", "VAR\n  a : BOOL;\nEND_VAR\nNOP();\n"),
     "E121": ("CPT(x,r AND 1);\n", "CPT(x,y AND 1);\n"),
     "E122": ("MOV(arr[10],x);\n", "MOV(arr[9],x);\n"),
@@ -56,7 +65,10 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "E126": ("XIC(a)TONR(t);\n", "XIC(a)TON(t,100,0);\n"),
     "E128": ("XIC(a)MOV(?,x);\n", "XIC(a)TON(t,?,?);\n"),
     "E129": ("XIC(a)OTE(b);\n;\n", "XIC(a)OTE(b);\nNOP();\n"),
-    "E131": ("XIC(a)JMP(over);\nXIC(a)OTE(b);\nLBL(ovr)NOP();\n", "XIC(a)JMP(over);\nXIC(a)OTE(b);\nLBL(over)NOP();\n"),
+    "E131": (
+        "XIC(a)JMP(over);\nXIC(a)OTE(b);\nLBL(ovr)NOP();\n",
+        "XIC(a)JMP(over);\nXIC(a)OTE(b);\nLBL(over)NOP();\n",
+    ),
     "W202": ("[XIC(a),]OTE(b);\n", "[XIC(a),XIC(c)]OTE(b);\n"),
     "W203": ("XIC(a)MSO(ax,mc);\nXIC(b)MSF(ax,mc);\n", "XIC(a)MSO(ax,mc);\nXIC(b)MSF(ax,mc2);\n"),
 }
@@ -178,7 +190,10 @@ def test_math_status_flags_are_ladder_only(st) -> None:
         ("[[XIC(a),XIC(b)],XIC(c)]OTE(a);", False),  # nested legs are all conditional
         ("[[XIC(a),],XIC(c)]OTE(a);", True),  # the inner branch shorts (it feeds OTE)
         ("[ONS(a),]OTE(b);", True),
-        ("[MyAOI(x),]OTE(b);", True),  # unknown instruction counts as a condition: the empty leg still shorts
+        (
+            "[MyAOI(x),]OTE(b);",
+            True,
+        ),  # unknown instruction counts as a condition: the empty leg still shorts
         ("[MyAOI(x),XIC(a)]OTE(b);", False),
         ("[NOP(),XIC(a)]OTE(b);", True),
         ("[AFI(),XIC(a)]OTE(b);", False),  # AFI is an (always false) input
@@ -217,10 +232,21 @@ def test_unknown_instruction_is_a_condition_for_the_rule(st) -> None:
 # ------------------------------------------------------------------ mnemonics and expressions
 @pytest.mark.parametrize(
     ("old", "new"),
-    [("EQU", "EQ"), ("NEQ", "NE"), ("GRT", "GT"), ("GEQ", "GE"), ("LES", "LT"), ("LEQ", "LE"), ("MOV", "MOVE")],
+    [
+        ("EQU", "EQ"),
+        ("NEQ", "NE"),
+        ("GRT", "GT"),
+        ("GEQ", "GE"),
+        ("LES", "LT"),
+        ("LEQ", "LE"),
+        ("MOV", "MOVE"),
+    ],
 )
 def test_v36_mnemonics_two_operands(tmp_path: Path, old: str, new: str) -> None:
-    ins = _analysed(tmp_path, f"{old}(x,1)OTE(a);\n{new}(x,1)OTE(a);\n" if old != "MOV" else "MOV(x,y);\nMOVE(x,y);\n")
+    ins = _analysed(
+        tmp_path,
+        f"{old}(x,1)OTE(a);\n{new}(x,1)OTE(a);\n" if old != "MOV" else "MOV(x,y);\nMOVE(x,y);\n",
+    )
     first, second = ins
     assert first is second and first.name == old
 
@@ -245,7 +271,9 @@ def _loaded(tmp_path: Path, rungs: str):  # noqa: ANN202
     p = tmp_path / "main.rll"
     p.write_text(HEADER + rungs)
     loaded = load([p])
-    assert [d.code for d in loaded.diagnostics if d.code not in TOLERATED] == [], [d.text() for d in loaded.diagnostics]
+    assert [d.code for d in loaded.diagnostics if d.code not in TOLERATED] == [], [
+        d.text() for d in loaded.diagnostics
+    ]
     return loaded
 
 

@@ -122,7 +122,13 @@ def test_no_operands() -> None:
 
 @pytest.mark.parametrize(
     "text",
-    ["Units per sec2", "% of Maximum", "Units per sec", "% of Time-Master Driven", "Immediate Forward Only"],
+    [
+        "Units per sec2",
+        "% of Maximum",
+        "Units per sec",
+        "% of Time-Master Driven",
+        "Immediate Forward Only",
+    ],
 )
 def test_enumeration_words_with_spaces(text: str) -> None:
     (i,) = rung(f"MAM(ax,mc,0,1.0,{text},5)").elements
@@ -380,7 +386,10 @@ def test_rll_errors_in_every_rung_are_reported() -> None:
     # line 1: the '(' of XIC (column 4) is left open; line 2: ']' at column 7 closes nothing;
     # line 3: ',' at column 7 after '+'; line 4: '@' at column 7
     assert [(d.code, d.span.line, d.span.col) for d in diags] == [
-        ("S006", 1, 4), ("S006", 2, 7), ("S001", 3, 7), ("S004", 4, 7),
+        ("S006", 1, 4),
+        ("S006", 2, 7),
+        ("S001", 3, 7),
+        ("S004", 4, 7),
     ]
     # the good rung after them is still parsed, with its file-order number
     assert [g.number for g in r.rungs] == [4]

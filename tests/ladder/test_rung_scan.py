@@ -116,7 +116,9 @@ GIVEN_UP = [
 def grammar(text: str, line: int, col: int, start: str = "rung_only") -> object:
     parser = _parser()
     try:
-        return fast_parse(parser, text, start, lambda state: contextual_tokens(parser, text, state, line, col))
+        return fast_parse(
+            parser, text, start, lambda state: contextual_tokens(parser, text, state, line, col)
+        )
     except SlowPath:
         return None
 
@@ -182,7 +184,11 @@ def _export_rungs() -> list[tuple[str, str]]:
         out += [(f.name, m.group(1)) for m in _RUNG_TEXT.finditer(text)]
     if corpus.is_dir():
         for f in sorted(corpus.glob("*.rungs")):
-            out += [(f.name, line) for line in f.read_text(encoding="utf-8").splitlines() if line.strip()]
+            out += [
+                (f.name, line)
+                for line in f.read_text(encoding="utf-8").splitlines()
+                if line.strip()
+            ]
     return out
 
 
@@ -211,8 +217,43 @@ def test_benchmark_rungs_take_the_fast_path() -> None:
 
 
 # ------------------------------------------------------------------ random expressions
-_ATOMS = ["a", "b1", "Tank[i].Level", "v[2]", "x.3", "7", "2.5", "1_0", "f(a)", "g()", "h(a, b)", "AND", "TRUE", "'s'", "S:N"]
-_OPS = ["+", "-", "*", "/", "**", " MOD ", " AND ", "&", " OR ", " XOR ", "=", "<>", "<", "<=", ">", ">=", "=>", ":="]
+_ATOMS = [
+    "a",
+    "b1",
+    "Tank[i].Level",
+    "v[2]",
+    "x.3",
+    "7",
+    "2.5",
+    "1_0",
+    "f(a)",
+    "g()",
+    "h(a, b)",
+    "AND",
+    "TRUE",
+    "'s'",
+    "S:N",
+]
+_OPS = [
+    "+",
+    "-",
+    "*",
+    "/",
+    "**",
+    " MOD ",
+    " AND ",
+    "&",
+    " OR ",
+    " XOR ",
+    "=",
+    "<>",
+    "<",
+    "<=",
+    ">",
+    ">=",
+    "=>",
+    ":=",
+]
 _PREFIX = ["", "", "", "-", "+", "NOT ", "- ", "NOT -", "-NOT "]
 
 

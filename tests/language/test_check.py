@@ -36,34 +36,68 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "E104": ("x := ABS(x, 1);\n", "x := ABS(x);\n"),
     "E105": ("IF b THEN MSO(ax, x); END_IF;\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
     "E106": ("IF b THEN MSO(5, mc); END_IF;\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
-    "E107": ("IF b THEN MAS(ax, mc, x, " + MAS_TAIL + " END_IF;\n", "IF b THEN MAS(ax, mc, 0, " + MAS_TAIL + " END_IF;\n"),
-    "E108": ("IF b THEN MAS(ax, mc, Alll, " + MAS_TAIL + " END_IF;\n", "IF b THEN MAS(ax, mc, All, " + MAS_TAIL + " END_IF;\n"),
-    "E109": ("IF b THEN MAS(ax, mc, 99, " + MAS_TAIL + " END_IF;\n", "IF b THEN MAS(ax, mc, 0, " + MAS_TAIL + " END_IF;\n"),
+    "E107": (
+        "IF b THEN MAS(ax, mc, x, " + MAS_TAIL + " END_IF;\n",
+        "IF b THEN MAS(ax, mc, 0, " + MAS_TAIL + " END_IF;\n",
+    ),
+    "E108": (
+        "IF b THEN MAS(ax, mc, Alll, " + MAS_TAIL + " END_IF;\n",
+        "IF b THEN MAS(ax, mc, All, " + MAS_TAIL + " END_IF;\n",
+    ),
+    "E109": (
+        "IF b THEN MAS(ax, mc, 99, " + MAS_TAIL + " END_IF;\n",
+        "IF b THEN MAS(ax, mc, 0, " + MAS_TAIL + " END_IF;\n",
+    ),
     "E110": ("x := a[1, 2];\n", "x := a[1];\n"),
-    "E111": ("IF b THEN MATC(ax, mc, 0, cp[1], 1.0, 1.0, 0, 0, 0.0, 0, 0); END_IF;\n",
-             "IF b THEN MATC(ax, mc, 0, cp[0], 1.0, 1.0, 0, 0, 0.0, 0, 0); END_IF;\n"),
-    "E112": ("IF b THEN MDAC(ax, ax, mc, 0, 0); END_IF;\n", "IF b THEN MDAC(ax, ax2, mc, 0, 0); END_IF;\n"),
+    "E111": (
+        "IF b THEN MATC(ax, mc, 0, cp[1], 1.0, 1.0, 0, 0, 0.0, 0, 0); END_IF;\n",
+        "IF b THEN MATC(ax, mc, 0, cp[0], 1.0, 1.0, 0, 0, 0.0, 0, 0); END_IF;\n",
+    ),
+    "E112": (
+        "IF b THEN MDAC(ax, ax, mc, 0, 0); END_IF;\n",
+        "IF b THEN MDAC(ax, ax2, mc, 0, 0); END_IF;\n",
+    ),
     "E113": ("IF b THEN MSO(x, mc); END_IF;\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
     "E114": ("CASE x OF\n  i: x := 1;\nEND_CASE;\n", "CASE x OF\n  1: x := 1;\nEND_CASE;\n"),
     "E115": ("RETURN;\n", "x := 0;\n"),
     "E116": ("x := s;\n", "s := 'text';\n"),
-    "E117": ("VAR\n  x : DINT;\n  x : REAL;\nEND_VAR\nx := 1;\n", "VAR\n  x : DINT;\n  y : REAL;\nEND_VAR\nx := 1;\n"),
-    "E118": ("VAR\n  x : DINT := [1, 2];\nEND_VAR\nx := 1;\n", "VAR\n  x : DINT := 2;\nEND_VAR\nx := 1;\n"),
+    "E117": (
+        "VAR\n  x : DINT;\n  x : REAL;\nEND_VAR\nx := 1;\n",
+        "VAR\n  x : DINT;\n  y : REAL;\nEND_VAR\nx := 1;\n",
+    ),
+    "E118": (
+        "VAR\n  x : DINT := [1, 2];\nEND_VAR\nx := 1;\n",
+        "VAR\n  x : DINT := 2;\nEND_VAR\nx := 1;\n",
+    ),
     "E119": ("VAR\n  x : NOTATYPE;\nEND_VAR\n", "VAR\n  x : DINT;\nEND_VAR\n"),
     "E120": ("S:FS := TRUE;\n", "b := S:FS;\n"),
     "E121": ("r := NOT r;\n", "x := NOT x;\n"),
     "E122": ("a[5] := 1;\n", "a[4] := 1;\n"),
     "E123": ("b := S:N;\n", "b := S:FS;\n"),
     "E124": ("JSR(nowhere);\n", "JSR(main);\n"),
-    "E125": ("VAR\n  v : ARRAY[1..5] OF DINT;\nEND_VAR\n", "VAR\n  v : ARRAY[0..4] OF DINT;\nEND_VAR\n"),
+    "E125": (
+        "VAR\n  v : ARRAY[1..5] OF DINT;\nEND_VAR\n",
+        "VAR\n  v : ARRAY[0..4] OF DINT;\nEND_VAR\n",
+    ),
     "E126": ("ABS(x);\n", "x := ABS(x);\n"),
     "E127": ("EXIT;\n", "WHILE b DO\n  EXIT;\nEND_WHILE;\n"),
     # an empty operand is allowed only where the catalog allows it (GSV/SSV InstanceName)
-    "E128": ("VAR d : DINT[7]; END_VAR\nGSV(WallClockTime, LocalDateTime, , d[0]);\n",
-             "VAR d : DINT[7]; END_VAR\nGSV(WallClockTime, , LocalDateTime, d[0]);\n"),
-    "E130": ("IF b THEN MSO(Axis := ax, MotionControl := mc); END_IF;\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
-    "W201": ("FOR i := 0 TO 4 DO\n  i := 5;\nEND_FOR;\n", "FOR i := 0 TO 4 DO\n  x := i;\nEND_FOR;\n"),
-    "W203": ("IF b THEN MSO(ax, mc); MSF(ax, mc); END_IF;\n", "IF b THEN MSO(ax, mc); MSF(ax, mc2); END_IF;\n"),
+    "E128": (
+        "VAR d : DINT[7]; END_VAR\nGSV(WallClockTime, LocalDateTime, , d[0]);\n",
+        "VAR d : DINT[7]; END_VAR\nGSV(WallClockTime, , LocalDateTime, d[0]);\n",
+    ),
+    "E130": (
+        "IF b THEN MSO(Axis := ax, MotionControl := mc); END_IF;\n",
+        "IF b THEN MSO(ax, mc); END_IF;\n",
+    ),
+    "W201": (
+        "FOR i := 0 TO 4 DO\n  i := 5;\nEND_FOR;\n",
+        "FOR i := 0 TO 4 DO\n  x := i;\nEND_FOR;\n",
+    ),
+    "W203": (
+        "IF b THEN MSO(ax, mc); MSF(ax, mc); END_IF;\n",
+        "IF b THEN MSO(ax, mc); MSF(ax, mc2); END_IF;\n",
+    ),
     "W204": ("MSO(ax, mc);\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
     "U303": ("GSV(TASK, THIS, Priority, x);\n", "GSV(TASK, THIS, Rate, x);\n"),
 }
@@ -132,7 +166,16 @@ def test_json_fields_and_ranges(st) -> None:
     exit_code, diags = _codes(st, body)
     assert exit_code == 1
     (d,) = diags
-    assert list(d) == ["path", "line", "column", "endLine", "endColumn", "severity", "code", "message"]
+    assert list(d) == [
+        "path",
+        "line",
+        "column",
+        "endLine",
+        "endColumn",
+        "severity",
+        "code",
+        "message",
+    ]
     # HEADER has 10 lines; line 11 is 'x := 1;', line 12 '   x := undefinedTag + 1;'
     # 'undefinedTag' starts at column 9 (1-based) and has 12 characters: end exclusive = 21
     assert (d["line"], d["column"], d["endLine"], d["endColumn"]) == (12, 9, 12, 21)
@@ -166,7 +209,10 @@ def test_github_format(st) -> None:
     r = st.check(HEADER + "x := zz;\n", "github")
     assert r.code == 1
     p = str(st.tmp / "main.st")
-    assert r.out.strip() == f"::error file={p},line=11,col=6,endLine=11,endColumn=8,title=E101::undefined tag 'zz'"
+    assert (
+        r.out.strip()
+        == f"::error file={p},line=11,col=6,endLine=11,endColumn=8,title=E101::undefined tag 'zz'"
+    )
 
 
 def test_github_warning(st) -> None:
@@ -218,7 +264,10 @@ def test_several_syntax_errors_reported(st) -> None:
     body = "x := 1 +;\nr := 2.0;\nx := * 3;\nb := TRUE;\n"
     exit_code, diags = _codes(st, body)
     assert exit_code == 1
-    assert [(d["code"], d["line"]) for d in diags] == [("S001", 11), ("S001", 13)]  # recovery continues
+    assert [(d["code"], d["line"]) for d in diags] == [
+        ("S001", 11),
+        ("S001", 13),
+    ]  # recovery continues
 
 
 def test_missing_end_if_names_the_if(st) -> None:
@@ -239,13 +288,18 @@ def test_st_gsv_with_an_empty_instance_name_runs(st) -> None:
 
 
 def test_st_empty_operand_elsewhere_is_e128_at_the_separators(st) -> None:
-    body = ("VAR d : DINT[7]; t : FBD_TIMER; END_VAR\n"
-            "GSV(WallClockTime, LocalDateTime, , d[0]);\n"
-            "COP(d[0],, 1);\n"
-            "SSV(WallClockTime,,LocalDateTime,);\n")
+    body = (
+        "VAR d : DINT[7]; t : FBD_TIMER; END_VAR\n"
+        "GSV(WallClockTime, LocalDateTime, , d[0]);\n"
+        "COP(d[0],, 1);\n"
+        "SSV(WallClockTime,,LocalDateTime,);\n"
+    )
     exit_code, diags = _codes(st, body)
     assert exit_code == 1
-    got = [(d["code"], d["line"], d["column"], d["endLine"], d["endColumn"], d["message"]) for d in diags]
+    got = [
+        (d["code"], d["line"], d["column"], d["endLine"], d["endColumn"], d["message"])
+        for d in diags
+    ]
     # line 2: the third slot lies between the commas at columns 33 and 35 (end exclusive 36);
     # line 3: between the commas at columns 9 and 10; line 4: between the comma at 33 and ')' at 34
     assert got == [
@@ -260,8 +314,17 @@ def test_st_empty_parameter_of_a_function_block_call_is_e128(st) -> None:
     _, diags = _codes(st, body)
     # `ci(Execute := b, )`: `ci(` is columns 1-3, `Execute` 4-10, `:=` 12-13, `b` 15, the comma
     # 16, a blank 17 and ')' 18: the empty slot spans 16..18, end exclusive 19
-    e128 = [(d["line"], d["column"], d["endColumn"], d["message"]) for d in diags if d["code"] == "E128"]
-    assert e128 == [(2, 16, 19, "function block call 'ci': an empty parameter is not allowed; give parameters by name")]
+    e128 = [
+        (d["line"], d["column"], d["endColumn"], d["message"]) for d in diags if d["code"] == "E128"
+    ]
+    assert e128 == [
+        (
+            2,
+            16,
+            19,
+            "function block call 'ci': an empty parameter is not allowed; give parameters by name",
+        )
+    ]
 
 
 def test_st_empty_argument_in_an_expression_call_is_a_syntax_error(st) -> None:

@@ -44,7 +44,9 @@ def test_zero_scans(st) -> None:
 )
 def test_duration_rounds_to_scans(st, duration: str, period: str, scans: int) -> None:
     p = st.write("main.st", COUNTER)
-    r = st.cli("run", str(p), "--duration", duration, "--scan-period", period, "--json", "--watch", "n")
+    r = st.cli(
+        "run", str(p), "--duration", duration, "--scan-period", period, "--json", "--watch", "n"
+    )
     assert r.code == 0, r.err
     assert r.json["scans"] == scans
     assert r.tags["n"] == scans
@@ -84,8 +86,24 @@ def test_set_values(st) -> None:
     VAR d : DINT; b : BOOL; r : REAL; h : DINT; s : SINT; arr : DINT[3]; out : DINT; neg : DINT; x : DINT; END_VAR
     out := d + h + arr[2];
     """
-    args = ("--set", "d=41", "--set", "b=TRUE", "--set", "r=1.25", "--set", "h=16#10",
-            "--set", "s=-5", "--set", "arr[2]=1", "--set", "neg=-2_000", "--set", "x.3=1")
+    args = (
+        "--set",
+        "d=41",
+        "--set",
+        "b=TRUE",
+        "--set",
+        "r=1.25",
+        "--set",
+        "h=16#10",
+        "--set",
+        "s=-5",
+        "--set",
+        "arr[2]=1",
+        "--set",
+        "neg=-2_000",
+        "--set",
+        "x.3=1",
+    )
     t = st.tags(src, "d", "b", "r", "h", "s", "arr", "out", "neg", "x", args=args)
     assert t["d"] == 41
     assert t["b"] is True
@@ -110,8 +128,24 @@ def test_set_bool_as_number_and_real_rounding(st) -> None:
 def test_trace_csv(st, tmp_path) -> None:
     out = tmp_path / "t.csv"
     p = st.write("main.st", COUNTER)
-    r = st.cli("run", str(p), "--scans", "4", "--scan-period", "2.5", "--watch", "n", "--watch", "b",
-               "--watch", "r", "--watch", "arr[1]", "--trace", str(out))
+    r = st.cli(
+        "run",
+        str(p),
+        "--scans",
+        "4",
+        "--scan-period",
+        "2.5",
+        "--watch",
+        "n",
+        "--watch",
+        "b",
+        "--watch",
+        "r",
+        "--watch",
+        "arr[1]",
+        "--trace",
+        str(out),
+    )
     assert r.code == 0, r.err
     rows = list(csv.reader(out.open()))
     assert rows[0] == ["time", "n", "b", "r", "arr[1]"]
@@ -130,11 +164,14 @@ def test_trace_csv(st, tmp_path) -> None:
 
 def test_trace_stops_at_major_fault(st, tmp_path) -> None:
     out = tmp_path / "t.csv"
-    p = st.write("main.st", """
+    p = st.write(
+        "main.st",
+        """
     VAR n : DINT; a : DINT[3]; END_VAR
     n := n + 1;
     a[n] := 1;
-    """)
+    """,
+    )
     r = st.cli("run", str(p), "--scans", "10", "--watch", "n", "--trace", str(out), "--json")
     assert r.code == 3
     rows = list(csv.reader(out.open()))
@@ -167,7 +204,16 @@ def test_verification_error_exit_1(st) -> None:
     assert rep["tags"] == {}
     assert rep["scans"] == 0
     (d,) = rep["diagnostics"]
-    assert set(d) == {"path", "line", "column", "endLine", "endColumn", "severity", "code", "message"}
+    assert set(d) == {
+        "path",
+        "line",
+        "column",
+        "endLine",
+        "endColumn",
+        "severity",
+        "code",
+        "message",
+    }
     assert (d["code"], d["line"], d["column"], d["endLine"], d["endColumn"]) == ("E101", 3, 6, 3, 7)
 
 
@@ -247,7 +293,9 @@ def test_usage_error_check_missing_path(st) -> None:
 
 def test_unwritable_trace(st) -> None:
     p = st.write("main.st", COUNTER)
-    _one_line_error(st.cli("run", str(p), "--scans", "1", "--trace", str(st.tmp / "no" / "dir" / "t.csv")))
+    _one_line_error(
+        st.cli("run", str(p), "--scans", "1", "--trace", str(st.tmp / "no" / "dir" / "t.csv"))
+    )
 
 
 def test_large_generated_program(st) -> None:
@@ -290,7 +338,9 @@ def test_set_rejects_values_that_do_not_fit(st, setting: str, fragment: str) -> 
 
 
 def test_set_accepts_the_range_ends(st) -> None:
-    t = st.tags(RANGES, "s", "u", "r", args=("--set", "s=-128", "--set", "u=255", "--set", "r=-1.5"))
+    t = st.tags(
+        RANGES, "s", "u", "r", args=("--set", "s=-128", "--set", "u=255", "--set", "r=-1.5")
+    )
     assert t == {"s": -128, "u": 255, "r": -1.5}
 
 

@@ -17,8 +17,14 @@ def logixst(tmp_path: Path, name: str, text: str, *args: str) -> subprocess.Comp
     path = tmp_path / name
     path.write_text(text)
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "interpreter.cli", args[0], str(path), *args[1:]],
-                          capture_output=True, text=True, env=env, check=False, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "interpreter.cli", args[0], str(path), *args[1:]],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=False,
+        timeout=120,
+    )
 
 
 def watched(done: subprocess.CompletedProcess[str]) -> dict:
@@ -32,25 +38,35 @@ def test_a_sum_of_400_terms_runs(tmp_path: Path) -> None:
     # levels deep (beyond Python's default recursion limit in the checker) and its generated
     # expression would nest 400 parentheses (Python's parser stops at 200).
     text = "VAR x : DINT; a : DINT := 3; END_VAR\nx := " + " + ".join(["a"] * 400) + ";\n"
-    assert watched(logixst(tmp_path, "sum.st", text, "run", "--scans", "1", "--json", "--watch", "x")) == {"x": 1200}
+    assert watched(
+        logixst(tmp_path, "sum.st", text, "run", "--scans", "1", "--json", "--watch", "x")
+    ) == {"x": 1200}
 
 
 def test_a_long_not_chain_runs(tmp_path: Path) -> None:
     # 3,001 NOTs applied to FALSE: an odd count gives TRUE
     text = "VAR x : BOOL; a : BOOL; END_VAR\nx := " + "NOT " * 3001 + "a;\n"
-    assert watched(logixst(tmp_path, "nots.st", text, "run", "--scans", "1", "--json", "--watch", "x")) == {"x": True}
+    assert watched(
+        logixst(tmp_path, "nots.st", text, "run", "--scans", "1", "--json", "--watch", "x")
+    ) == {"x": True}
 
 
 def test_branches_nested_500_deep_run(tmp_path: Path) -> None:
     # [[[...XIC(a)...]]]OTE(b): each branch has one leg, so b follows a
     text = "VAR a : BOOL := 1; b : BOOL; END_VAR\n" + "[" * 500 + "XIC(a)" + "]" * 500 + "OTE(b);\n"
-    assert watched(logixst(tmp_path, "deep.rll", text, "run", "--scans", "1", "--json", "--watch", "b")) == {"b": True}
+    assert watched(
+        logixst(tmp_path, "deep.rll", text, "run", "--scans", "1", "--json", "--watch", "b")
+    ) == {"b": True}
 
 
 def test_cpt_with_2000_nested_parentheses_runs(tmp_path: Path) -> None:
     # parentheses leave no AST level, but the text is 2,000 levels deep: 7 - 2 = 5
-    text = "VAR x : DINT; a : DINT := 7; END_VAR\nCPT(x," + "(" * 2000 + "a - 2" + ")" * 2000 + ");\n"
-    assert watched(logixst(tmp_path, "cpt.rll", text, "run", "--scans", "1", "--json", "--watch", "x")) == {"x": 5}
+    text = (
+        "VAR x : DINT; a : DINT := 7; END_VAR\nCPT(x," + "(" * 2000 + "a - 2" + ")" * 2000 + ");\n"
+    )
+    assert watched(
+        logixst(tmp_path, "cpt.rll", text, "run", "--scans", "1", "--json", "--watch", "x")
+    ) == {"x": 5}
 
 
 def test_blocks_too_deep_for_the_vm_are_refused_in_one_line(tmp_path: Path) -> None:

@@ -25,8 +25,15 @@ def test_subscript_out_of_range_faults(st) -> None:
     (f,) = rep["faults"]
     path = str(st.tmp / "main.st")
     # source lines: 1 blank (dedent keeps the leading newline), 2 VAR, 3 scans, 4 before, 5 after
-    assert f == {"type": 4, "code": 20, "major": True, "message": f["message"],
-                 "file": path, "line": 5, "column": 12}  # column of 'a[ i ]' in "  after := a[ i ];"
+    assert f == {
+        "type": 4,
+        "code": 20,
+        "major": True,
+        "message": f["message"],
+        "file": path,
+        "line": 5,
+        "column": 12,
+    }  # column of 'a[ i ]' in "  after := a[ i ];"
 
 
 def test_subscript_fault_in_multi_dimensional_store(st) -> None:
@@ -84,11 +91,14 @@ def test_endless_loop_default_budget(st) -> None:
     assert 1_000_000 < r.json["tags"]["n"] <= 5_000_000  # default budget 5,000,000 statements
 
 
-@pytest.mark.parametrize(("loop", "column"), [
-    ("WHILE TRUE DO\nEND_WHILE;", 1),
-    ("REPEAT ; UNTIL FALSE END_REPEAT;", 1),
-    ("n := 0; FOR i := 0 TO 2147483646 DO END_FOR;", 9),  # the FOR starts after "n := 0; "
-])
+@pytest.mark.parametrize(
+    ("loop", "column"),
+    [
+        ("WHILE TRUE DO\nEND_WHILE;", 1),
+        ("REPEAT ; UNTIL FALSE END_REPEAT;", 1),
+        ("n := 0; FOR i := 0 TO 2147483646 DO END_FOR;", 9),  # the FOR starts after "n := 0; "
+    ],
+)
 def test_loop_without_statements_trips_the_watchdog(st, loop: str, column: int) -> None:
     # An empty body used to count nothing, so the scan never ended (a hang, found by fuzzing).
     # Each iteration now counts one; with a budget of 1000 the 1001st faults, located at the loop.
@@ -138,10 +148,13 @@ def test_divide_by_zero_minor_fault(st) -> None:
 
 
 def test_minor_fault_in_text_output(st) -> None:
-    p = st.write("main.st", """
+    p = st.write(
+        "main.st",
+        """
     VAR a, z : DINT; END_VAR
     a := 1 / z;
-    """)
+    """,
+    )
     r = st.cli("run", str(p), "--scans", "2", "--watch", "a")
     assert r.code == 0
     assert "minor fault type 4 code 4" in r.err

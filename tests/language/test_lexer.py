@@ -23,8 +23,14 @@ from bench_parse import program  # noqa: E402
 
 def lark_reference() -> Lark:
     grammar = (ROOT / "interpreter" / "syntax" / "st.lark").read_text()
-    return Lark(grammar, parser="lalr", lexer="contextual", transformer=AstBuilder(),
-                maybe_placeholders=True, start=["start", "expr"])
+    return Lark(
+        grammar,
+        parser="lalr",
+        lexer="contextual",
+        transformer=AstBuilder(),
+        maybe_placeholders=True,
+        start=["start", "expr"],
+    )
 
 
 SNIPPETS = {
@@ -34,7 +40,7 @@ SNIPPETS = {
     "soft_keyword": "VAR RETAIN a : DINT; END_VAR retain := 5; constant := TRUE;",
     # `step:` inside CASE is a label; `x : REAL` in VAR is a declaration.
     "case_label": "VAR x : REAL; s : DINT; idle : DINT := 0; END_VAR\n"
-                  "CASE s OF idle: x := 1.0; 1..3 : x := 2.0; END_CASE;",
+    "CASE s OF idle: x := 1.0; 1..3 : x := 2.0; END_CASE;",
     # Qualified names where a name is expected.
     "qualified": "VAR ok : BOOL; END_VAR ok := S:FS; Program:Main.ok := ok;",
     "radix_real": "VAR a : DINT; r : REAL; END_VAR a := 16#FF_FF + 2#1010 + 8#17 + 10U; r := 1.5e3 + 2.0;",
@@ -44,7 +50,7 @@ SNIPPETS = {
     "program_parameter": "\\Other.Flag := \\Other.In.OR AND NOT \\P2.x[1];",
     # Empty operands in an instruction call statement (the checker decides where they are allowed).
     "empty_operands": "VAR dt : DINT[7]; END_VAR GSV(WallClockTime,,LocalDateTime,dt[0]);\n"
-                      "SSV( WallClockTime , , LocalDateTime , dt[0] ); NOP(); COP(dt[0],,1); f(,); g(a := 1,);",
+    "SSV( WallClockTime , , LocalDateTime , dt[0] ); NOP(); COP(dt[0],,1); f(,); g(a := 1,);",
     "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
@@ -76,7 +82,9 @@ def test_token_positions_are_one_based_and_exact() -> None:
     assert stmt.value.span == n.Span(4, 11, 4, 16)  # `16#1F`: 2 + 3 + 1 + 2 + 2 spaces -> col 11
 
 
-@pytest.mark.parametrize("bad", ["VAR a : DINT; END_VAR a := 1 @ 2;", "VAR a : DINT; END_VAR a := 1", "x := 'open"])
+@pytest.mark.parametrize(
+    "bad", ["VAR a : DINT; END_VAR a := 1 @ 2;", "VAR a : DINT; END_VAR a := 1", "x := 'open"]
+)
 def test_errors_take_the_slow_path_with_recovery(bad: str) -> None:
     with pytest.raises(SlowPath):
         fast_parse(_parser(), bad, "start")
@@ -118,7 +126,9 @@ def test_rung_fast_path_matches_lark(text: str) -> None:
     origin = rp._Origin(7, 12)  # the rung text starts at line 7, column 12 of its file
     slow = parser.parse(text, start="rung_only")
     rp._shift(slow, origin)
-    fast = fast_parse(parser, text, "rung_only", lambda state: contextual_tokens(parser, text, state, 7, 12))
+    fast = fast_parse(
+        parser, text, "rung_only", lambda state: contextual_tokens(parser, text, state, 7, 12)
+    )
     assert fast == slow
 
 
@@ -137,10 +147,15 @@ def test_rung_fast_path_matches_lark_on_a_generated_export() -> None:
     for text in texts:
         slow = parser.parse(text, start="rung_only")
         rp._shift(slow, rp._Origin(1, 1))
-        assert fast_parse(parser, text, "rung_only", lambda s, t=text: contextual_tokens(parser, t, s)) == slow
+        assert (
+            fast_parse(parser, text, "rung_only", lambda s, t=text: contextual_tokens(parser, t, s))
+            == slow
+        )
 
 
-def test_grammar_cache_file_changes_with_any_grammar_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_grammar_cache_file_changes_with_any_grammar_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     # rll.lark imports st.lark: editing either must give both parsers a fresh cache file.
     import shutil
 

@@ -226,7 +226,12 @@ def test_udt_members_nested_arrays_and_initialisers(st) -> None:
     assert r.code == 0, r.err
     t = r.tags
     assert t["p"] == {"x": 3, "y": 4.5}
-    assert t["segs[0]"] == {"a": {"x": 1, "y": 0.0}, "b": {"x": 0, "y": 0.0}, "len": 2.5, "tags": [0, 0]}
+    assert t["segs[0]"] == {
+        "a": {"x": 1, "y": 0.0},
+        "b": {"x": 0, "y": 0.0},
+        "len": 2.5,
+        "tags": [0, 0],
+    }
     assert t["segs[2].a.x"] == 30  # 3 * 10
     assert t["segs[2].b.y"] == 12.5  # 4.5 + 8.0
     assert t["segs[2].tags[1]"] == 11  # 5 + 6
@@ -238,7 +243,9 @@ def test_array_initialiser_needs_one_value_per_element(st) -> None:
     for init, given in (("[1, 2]", 2), ("[1, 2, 3, 4]", 4)):
         r = st.check(f"VAR a : DINT[3] := {init}; END_VAR\na[0] := 1;\n")
         assert r.code == 1
-        assert [(d["code"], d["message"]) for d in r.json] == [("E118", f"{given} elements given for an array of 3")]
+        assert [(d["code"], d["message"]) for d in r.json] == [
+            ("E118", f"{given} elements given for an array of 3")
+        ]
 
 
 def test_udt_member_default(st) -> None:
@@ -285,30 +292,55 @@ def test_first_scan_flag(st, tmp_path) -> None:
 
 
 def test_jsr_between_files(st) -> None:
-    main = st.write("main.st", """
+    main = st.write(
+        "main.st",
+        """
     VAR cnt, sub_seen, other_ran : DINT; END_VAR
     JSR(sub);
     JSR(Sub);
     sub_seen := cnt;
-    """)
-    sub = st.write("sub.st", """
+    """,
+    )
+    sub = st.write(
+        "sub.st",
+        """
     cnt := cnt + 1;
-    """)
-    other = st.write("other.st", """
+    """,
+    )
+    other = st.write(
+        "other.st",
+        """
     other_ran := 99;
-    """)
-    r = st.cli("run", str(main), str(sub), str(other), "--scans", "3", "--json",
-               "--watch", "cnt", "--watch", "sub_seen", "--watch", "other_ran")
+    """,
+    )
+    r = st.cli(
+        "run",
+        str(main),
+        str(sub),
+        str(other),
+        "--scans",
+        "3",
+        "--json",
+        "--watch",
+        "cnt",
+        "--watch",
+        "sub_seen",
+        "--watch",
+        "other_ran",
+    )
     assert r.code == 0, r.err
     # 2 JSRs per scan (routine names are case-insensitive) x 3 scans
     assert r.tags == {"cnt": 6, "sub_seen": 6, "other_ran": 0}  # other.st is never called
 
 
 def test_jsr_unknown_routine_is_a_verification_error(st) -> None:
-    main = st.write("main.st", """
+    main = st.write(
+        "main.st",
+        """
     VAR x : DINT; END_VAR
     JSR(nowhere);
-    """)
+    """,
+    )
     r = st.cli("run", str(main), "--json")
     assert r.code == 1
     assert "E124" in r.err

@@ -49,15 +49,23 @@ class Trace:
                 return r[0]
         raise AssertionError(f"{name} never satisfied the condition")
 
-    def check(self, name: str, expected: Callable[[float], float], tol: float,
-              t0: float = 0.0, t1: float = math.inf) -> None:
+    def check(
+        self,
+        name: str,
+        expected: Callable[[float], float],
+        tol: float,
+        t0: float = 0.0,
+        t1: float = math.inf,
+    ) -> None:
         """Every row with t0 <= time <= t1 is within tol of expected(time)."""
         j = self.names.index(name)
         worst = 0.0
         for r in self.rows:
             if t0 - 1e-9 <= r[0] <= t1 + 1e-9:
                 err = abs(r[j] - expected(r[0]))
-                assert err <= tol, f"{name} at t={r[0]}: {r[j]} vs expected {expected(r[0])} (tol {tol})"
+                assert err <= tol, (
+                    f"{name} at t={r[0]}: {r[j]} vs expected {expected(r[0])} (tol {tol})"
+                )
                 worst = max(worst, err)
 
 
@@ -66,8 +74,14 @@ class Runner:
         self.tmp = tmp_path
         self.capsys = capsys
 
-    def trace(self, src: str, watch: Sequence[str], scans: int, args: Sequence[str] = (),
-              name: str = "prog.st") -> Trace:
+    def trace(
+        self,
+        src: str,
+        watch: Sequence[str],
+        scans: int,
+        args: Sequence[str] = (),
+        name: str = "prog.st",
+    ) -> Trace:
         prog = self.tmp / name
         prog.write_text(src)
         out = self.tmp / "trace.csv"

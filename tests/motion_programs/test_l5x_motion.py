@@ -15,8 +15,23 @@ PROJECT = Path(__file__).parent / "fixtures" / "motion_project.L5X"
 
 def test_l5x_motion_group_and_axis(capsys) -> None:  # noqa: ANN001
     capsys.readouterr()
-    code = main(["run", str(PROJECT), "--scans", "300", "--json", "--watch", "Conveyor.CommandPosition",
-                 "--watch", "Conveyor.CommandVelocity", "--watch", "Group1.CoarseUpdatePeriod", "--watch", "JogCtl.IP"])
+    code = main(
+        [
+            "run",
+            str(PROJECT),
+            "--scans",
+            "300",
+            "--json",
+            "--watch",
+            "Conveyor.CommandPosition",
+            "--watch",
+            "Conveyor.CommandVelocity",
+            "--watch",
+            "Group1.CoarseUpdatePeriod",
+            "--watch",
+            "JogCtl.IP",
+        ]
+    )
     out = capsys.readouterr().out
     assert code == 0
     tags = json.loads(out)["tags"]

@@ -18,7 +18,12 @@ ADD(k,1,k);
 
 def test_transitional_matc_in_ladder(mp) -> None:
     # go is true in the scans 100..199 and from 300 on (set at the end of scans 99 and 299)
-    tr = mp.trace(SRC, ["c1.EN", "c1.DN", "c1.IP", "c1.ER", "c1.ERR", "A.CommandPosition"], scans=400, name="prog.rll")
+    tr = mp.trace(
+        SRC,
+        ["c1.EN", "c1.DN", "c1.IP", "c1.ER", "c1.ERR", "A.CommandPosition"],
+        scans=400,
+        name="prog.rll",
+    )
     # executed once in scan 100; the rung staying true does not execute it again (no error 23)
     assert [tr.at(t, "c1.EN") for t in (0.099, 0.1, 0.199)] == [0, 1, 1]
     assert set(tr.col("c1.ER")[100:300]) == {0.0}

@@ -35,31 +35,62 @@ def prog(decls: str, body: str) -> str:
 
 def test_same_direction_distance_and_time_scaling_once(mp) -> None:
     # DS = 2, TS = 2: contribution 2 * (P(t/2) - P(0)) = 10 t for 0 <= t <= 2 s, then held at 20
-    src = prog("", "IF k = 0 THEN MATC(A, c1, 0, lin, 2.0, 2.0, once, immediate, 0.0, none, timedrivenmode); END_IF;")
-    tr = mp.trace(src, ["A.CommandPosition", "A.ActualPosition", "c1.EN", "c1.DN", "c1.IP", "c1.PC",
-                        "c1.ER", "A.TimeCamStatus"], scans=2100)
+    src = prog(
+        "",
+        "IF k = 0 THEN MATC(A, c1, 0, lin, 2.0, 2.0, once, immediate, 0.0, none, timedrivenmode); END_IF;",
+    )
+    tr = mp.trace(
+        src,
+        [
+            "A.CommandPosition",
+            "A.ActualPosition",
+            "c1.EN",
+            "c1.DN",
+            "c1.IP",
+            "c1.PC",
+            "c1.ER",
+            "A.TimeCamStatus",
+        ],
+        scans=2100,
+    )
     tr.check("A.CommandPosition", lambda t: ramp(t, T0, T0 + 2.0, 10.0), 10.0 * CUP + F32)
     tr.check("A.ActualPosition", lambda t: ramp(t, T0, T0 + 2.0, 10.0), 10.0 * CUP + F32)  # virtual
     # SPEC 9.22: DN, IP and TimeCamStatus in the executing scan
-    assert [tr.at(0.0, n) for n in ("c1.EN", "c1.DN", "c1.IP", "c1.PC", "c1.ER", "A.TimeCamStatus")] == [1, 1, 1, 0, 0, 1]
+    assert [
+        tr.at(0.0, n) for n in ("c1.EN", "c1.DN", "c1.IP", "c1.PC", "c1.ER", "A.TimeCamStatus")
+    ] == [1, 1, 1, 0, 0, 1]
     # Once: cam time reaches span * TS = 2 s at the update 2.002: PC set, IP and TimeCamStatus cleared
-    assert (tr.at(2.001, "c1.IP"), tr.at(2.001, "c1.PC"), tr.at(2.001, "A.TimeCamStatus")) == (1, 0, 1)
-    assert (tr.at(2.002, "c1.IP"), tr.at(2.002, "c1.PC"), tr.at(2.002, "A.TimeCamStatus")) == (0, 1, 0)
+    assert (tr.at(2.001, "c1.IP"), tr.at(2.001, "c1.PC"), tr.at(2.001, "A.TimeCamStatus")) == (
+        1,
+        0,
+        1,
+    )
+    assert (tr.at(2.002, "c1.IP"), tr.at(2.002, "c1.PC"), tr.at(2.002, "A.TimeCamStatus")) == (
+        0,
+        1,
+        0,
+    )
     assert tr.at(2.099, "A.CommandPosition") == 20.0  # the axis holds
 
 
 def test_opposite_direction_subtracts_the_profile(mp) -> None:
-    src = prog("", "IF k = 0 THEN MATC(A, c1, 1, lin, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode); END_IF;")
+    src = prog(
+        "",
+        "IF k = 0 THEN MATC(A, c1, 1, lin, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode); END_IF;",
+    )
     tr = mp.trace(src, ["A.CommandPosition"], scans=1200)
     tr.check("A.CommandPosition", lambda t: -ramp(t, T0, T0 + 1.0, 10.0), 10.0 * CUP + F32)
 
 
 def test_reverse_and_unchanged_first_time_defaults(mp) -> None:
     # seed: Reverse the first time -> Opposite; Unchanged the first time -> Same
-    src = prog("", """IF k = 0 THEN
+    src = prog(
+        "",
+        """IF k = 0 THEN
   MATC(A, c1, 2, lin, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
   MATC(B, c2, 3, lin, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
-END_IF;""")
+END_IF;""",
+    )
     tr = mp.trace(src, ["A.CommandPosition", "B.CommandPosition"], scans=600)
     tr.check("A.CommandPosition", lambda t: -ramp(t, T0, 2.0, 10.0), 10.0 * CUP + F32)
     tr.check("B.CommandPosition", lambda t: ramp(t, T0, 2.0, 10.0), 10.0 * CUP + F32)
@@ -69,10 +100,13 @@ def test_reverse_and_unchanged_refer_to_the_last_cam_even_if_completed(mp) -> No
     # four Once cams of LIN with TS = 0.1 (0.1 s, net 10 each), one every 200 ms:
     # Opposite -> -10; Reverse (of Opposite) = Same -> 0; Unchanged (Same) -> +10;
     # Reverse (of Same) = Opposite -> 0
-    src = prog("", """IF k = 0 THEN MATC(A, c1, 1, lin, 1.0, 0.1, once, immediate, 0.0, none, timedrivenmode); END_IF;
+    src = prog(
+        "",
+        """IF k = 0 THEN MATC(A, c1, 1, lin, 1.0, 0.1, once, immediate, 0.0, none, timedrivenmode); END_IF;
 IF k = 200 THEN MATC(A, c2, 2, lin, 1.0, 0.1, once, immediate, 0.0, none, timedrivenmode); END_IF;
 IF k = 400 THEN MATC(A, c3, 3, lin, 1.0, 0.1, once, immediate, 0.0, none, timedrivenmode); END_IF;
-IF k = 600 THEN MATC(A, c4, 2, lin, 1.0, 0.1, once, immediate, 0.0, none, timedrivenmode); END_IF;""")
+IF k = 600 THEN MATC(A, c4, 2, lin, 1.0, 0.1, once, immediate, 0.0, none, timedrivenmode); END_IF;""",
+    )
     tr = mp.trace(src, ["A.CommandPosition", "c1.PC", "c4.PC"], scans=800)
     got = [tr.at(t, "A.CommandPosition") for t in (0.15, 0.35, 0.55, 0.75)]
     assert got == pytest.approx([-10.0, 0.0, 10.0, 0.0], abs=F32)
@@ -87,7 +121,10 @@ def test_continuous_unwinds_time_and_repeats(mp) -> None:
         x = (t - T0) % 1.0 if t >= T0 else 0.0
         return 10.0 * x if x <= 0.5 else 10.0 * (1.0 - x)
 
-    src = prog("", "IF k = 0 THEN MATC(A, c1, 0, tri, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode); END_IF;")
+    src = prog(
+        "",
+        "IF k = 0 THEN MATC(A, c1, 0, tri, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode); END_IF;",
+    )
     tr = mp.trace(src, ["A.CommandPosition", "c1.IP", "c1.PC"], scans=2600)
     tr.check("A.CommandPosition", wave, 10.0 * CUP + F32)
     assert set(tr.col("c1.IP")) == {1.0} and set(tr.col("c1.PC")) == {0.0}
@@ -95,16 +132,30 @@ def test_continuous_unwinds_time_and_repeats(mp) -> None:
 
 def test_continuous_adds_the_net_change_each_pass(mp) -> None:
     # LIN continuous, TS = 0.5: 10 units per 0.5 s pass, passes add up: 20 (t - t0)
-    src = prog("", "IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 0.5, continuous, immediate, 0.0, none, timedrivenmode); END_IF;")
+    src = prog(
+        "",
+        "IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 0.5, continuous, immediate, 0.0, none, timedrivenmode); END_IF;",
+    )
     tr = mp.trace(src, ["A.CommandPosition"], scans=2600)
     tr.check("A.CommandPosition", lambda t: ramp(t, T0, 10.0, 20.0), 20.0 * CUP + 5 * F32)
 
 
 def test_immediate_matc_while_time_camming_is_error_23(mp) -> None:
-    src = prog("", """IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode); END_IF;
-IF k = 10 THEN MATC(A, c2, 0, tri, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode); END_IF;""")
-    tr = mp.trace(src, ["A.CommandPosition", "c1.IP", "c2.ER", "c2.ERR", "c2.DN", "c2.IP", "c2.EN"], scans=300)
-    assert [tr.at(0.01, n) for n in ("c2.EN", "c2.ER", "c2.ERR", "c2.DN", "c2.IP")] == [1, 1, 23, 0, 0]
+    src = prog(
+        "",
+        """IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode); END_IF;
+IF k = 10 THEN MATC(A, c2, 0, tri, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode); END_IF;""",
+    )
+    tr = mp.trace(
+        src, ["A.CommandPosition", "c1.IP", "c2.ER", "c2.ERR", "c2.DN", "c2.IP", "c2.EN"], scans=300
+    )
+    assert [tr.at(0.01, n) for n in ("c2.EN", "c2.ER", "c2.ERR", "c2.DN", "c2.IP")] == [
+        1,
+        1,
+        23,
+        0,
+        0,
+    ]
     assert tr.at(0.299, "c1.IP") == 1  # the running cam is not disturbed
     tr.check("A.CommandPosition", lambda t: ramp(t, T0, 10.0, 10.0), 10.0 * CUP + F32)
 
@@ -138,18 +189,37 @@ IF k = 1200 THEN MATC(A, c3, 0, dec, 1.0, 1.0, once, pending, 0.0, none, timedri
         x = min(t, 2.502) - 1.502
         return 15.0 + 10.0 * x - 5.0 * x * x
 
-    tr = mp.trace(prog(decls, body), [
-        "A.CommandPosition", "A.CommandVelocity", "A.TimeCamStatus", "A.TimeCamPendingStatus",
-        "c1.IP", "c1.PC", "c2.DN", "c2.IP", "c2.PC", "c3.IP", "c3.PC", "cc.DN",
-    ], scans=2700)
+    tr = mp.trace(
+        prog(decls, body),
+        [
+            "A.CommandPosition",
+            "A.CommandVelocity",
+            "A.TimeCamStatus",
+            "A.TimeCamPendingStatus",
+            "c1.IP",
+            "c1.PC",
+            "c2.DN",
+            "c2.IP",
+            "c2.PC",
+            "c3.IP",
+            "c3.PC",
+            "cc.DN",
+        ],
+        scans=2700,
+    )
     tr.check("A.CommandPosition", pos, 10.0 * CUP + F32)
     assert tr.at(0.0, "cc.DN") == 1  # MCCP completes in its scan (SPEC 9.21)
     # pending: DN and IP at once, TimeCamPendingStatus set immediately
-    assert (tr.at(0.009, "A.TimeCamPendingStatus"), tr.at(0.010, "A.TimeCamPendingStatus")) == (0, 1)
+    assert (tr.at(0.009, "A.TimeCamPendingStatus"), tr.at(0.010, "A.TimeCamPendingStatus")) == (
+        0,
+        1,
+    )
     assert (tr.at(0.010, "c2.DN"), tr.at(0.010, "c2.IP")) == (1, 1)
     # hand-over from the Once cam at 1.002: its PC set, pending status cleared
     assert [tr.at(1.001, n) for n in ("c1.IP", "c1.PC", "A.TimeCamPendingStatus")] == [1, 0, 1]
-    assert [tr.at(1.002, n) for n in ("c1.IP", "c1.PC", "A.TimeCamPendingStatus", "A.TimeCamStatus")] == [0, 1, 0, 1]
+    assert [
+        tr.at(1.002, n) for n in ("c1.IP", "c1.PC", "A.TimeCamPendingStatus", "A.TimeCamStatus")
+    ] == [0, 1, 0, 1]
     assert tr.at(1.2, "A.TimeCamPendingStatus") == 1
     # hand-over from the Continuous cam at 1.502: its IP cleared, no PC
     assert [tr.at(1.501, n) for n in ("c2.IP", "c3.IP")] == [1, 1]
@@ -165,28 +235,68 @@ IF k = 1200 THEN MATC(A, c3, 0, dec, 1.0, 1.0, once, pending, 0.0, none, timedri
 def test_pending_cam_preloaded_without_an_active_cam_waits(mp) -> None:
     # a pending MATC with no cam running does not move the axis; the next immediate cam
     # (executed at 0.1 s, starts at 0.102) runs its pass, then the preloaded cam takes over
-    src = prog("", """IF k = 0 THEN MATC(A, c1, 1, lin, 1.0, 1.0, once, pending, 0.0, none, timedrivenmode); END_IF;
-IF k = 100 THEN MATC(A, c2, 0, lin, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode); END_IF;""")
-    tr = mp.trace(src, ["A.CommandPosition", "A.TimeCamStatus", "A.TimeCamPendingStatus", "c1.IP", "c1.PC", "c2.PC"], scans=2300)
+    src = prog(
+        "",
+        """IF k = 0 THEN MATC(A, c1, 1, lin, 1.0, 1.0, once, pending, 0.0, none, timedrivenmode); END_IF;
+IF k = 100 THEN MATC(A, c2, 0, lin, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode); END_IF;""",
+    )
+    tr = mp.trace(
+        src,
+        [
+            "A.CommandPosition",
+            "A.TimeCamStatus",
+            "A.TimeCamPendingStatus",
+            "c1.IP",
+            "c1.PC",
+            "c2.PC",
+        ],
+        scans=2300,
+    )
 
     def pos(t: float) -> float:  # +10/s from 0.102 to 1.102, then -10/s (Opposite) to 2.102
         return ramp(t, 0.102, 1.102, 10.0) - ramp(t, 1.102, 2.102, 10.0)
 
     tr.check("A.CommandPosition", pos, 10.0 * CUP + F32)
-    assert [tr.at(0.05, n) for n in ("A.TimeCamStatus", "A.TimeCamPendingStatus", "c1.IP")] == [0, 1, 1]
-    assert [tr.at(1.102, n) for n in ("c2.PC", "A.TimeCamPendingStatus", "A.TimeCamStatus")] == [1, 0, 1]
+    assert [tr.at(0.05, n) for n in ("A.TimeCamStatus", "A.TimeCamPendingStatus", "c1.IP")] == [
+        0,
+        1,
+        1,
+    ]
+    assert [tr.at(1.102, n) for n in ("c2.PC", "A.TimeCamPendingStatus", "A.TimeCamStatus")] == [
+        1,
+        0,
+        1,
+    ]
     assert [tr.at(2.102, n) for n in ("c1.PC", "c1.IP", "A.TimeCamStatus")] == [1, 0, 0]
 
 
 def test_uncalculated_profile_is_error_32(mp) -> None:
     # Status 0 (never calculated) and 1 (being calculated) are both "not calculated" (SPEC 9.23)
-    src = prog("  raw, busy : CAM_PROFILE[4];\n", """IF k = 0 THEN
+    src = prog(
+        "  raw, busy : CAM_PROFILE[4];\n",
+        """IF k = 0 THEN
   busy[0].Status := 1;
   MATC(A, c1, 0, raw, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
   MATC(B, c2, 0, busy, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
-END_IF;""")
-    tr = mp.trace(src, ["c1.ER", "c1.ERR", "c2.ER", "c2.ERR", "raw[0].Status", "busy[0].Status", "A.CommandPosition"], scans=20)
-    assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c2.ER", "c2.ERR", "raw[0].Status", "busy[0].Status")] == [1, 32, 1, 32, 0, 1]
+END_IF;""",
+    )
+    tr = mp.trace(
+        src,
+        [
+            "c1.ER",
+            "c1.ERR",
+            "c2.ER",
+            "c2.ERR",
+            "raw[0].Status",
+            "busy[0].Status",
+            "A.CommandPosition",
+        ],
+        scans=20,
+    )
+    assert [
+        tr.at(0.0, n)
+        for n in ("c1.ER", "c1.ERR", "c2.ER", "c2.ERR", "raw[0].Status", "busy[0].Status")
+    ] == [1, 32, 1, 32, 0, 1]
     assert tr.at(0.019, "A.CommandPosition") == 0.0
 
 
@@ -194,10 +304,13 @@ def test_profile_status_counts_the_cams_using_it(mp) -> None:
     # 2 calculated; +1 per running cam (A, B); an erroring MATC (23) does not count; a pending
     # cam counts when it takes over; -1 when a cam completes: back to 2.
     # (time scalings 0.25 / 0.5 are exact in a REAL, so the passes end on update instants)
-    src = prog("", """IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 0.25, once, immediate, 0.0, none, timedrivenmode); END_IF;
+    src = prog(
+        "",
+        """IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 0.25, once, immediate, 0.0, none, timedrivenmode); END_IF;
 IF k = 5 THEN MATC(B, c2, 0, lin, 1.0, 0.5, once, immediate, 0.0, none, timedrivenmode); END_IF;
 IF k = 6 THEN MATC(B, c3, 0, lin, 1.0, 0.5, once, immediate, 0.0, none, timedrivenmode); END_IF;
-IF k = 7 THEN MATC(B, c4, 0, lin, 1.0, 0.25, once, pending, 0.0, none, timedrivenmode); END_IF;""")
+IF k = 7 THEN MATC(B, c4, 0, lin, 1.0, 0.25, once, pending, 0.0, none, timedrivenmode); END_IF;""",
+    )
     tr = mp.trace(src, ["lin[0].Status", "c3.ERR"], scans=800)
     st = lambda t: tr.at(t, "lin[0].Status")  # noqa: E731
     assert tr.at(0.006, "c3.ERR") == 23
@@ -216,24 +329,42 @@ def test_bad_operands_set_err_13_with_the_operand_index(mp) -> None:
   MATC(A, c3, 0, lin, 1.0, ts, once, immediate, 0.0, none, timedrivenmode);
   MATC(A, c4, 0, lin, 1.0, 1.0, once, immediate, 0.0, ld, masterdrivenmode);
 END_IF;"""
-    tr = mp.trace(prog(decls, body), [f"c{i}.{m}" for i in range(1, 5) for m in ("ER", "ERR", "EXERR", "DN")], scans=3)
-    got = [(tr.at(0.0, f"c{i}.ER"), tr.at(0.0, f"c{i}.ERR"), tr.at(0.0, f"c{i}.EXERR"), tr.at(0.0, f"c{i}.DN")) for i in range(1, 5)]
+    tr = mp.trace(
+        prog(decls, body),
+        [f"c{i}.{m}" for i in range(1, 5) for m in ("ER", "ERR", "EXERR", "DN")],
+        scans=3,
+    )
+    got = [
+        (
+            tr.at(0.0, f"c{i}.ER"),
+            tr.at(0.0, f"c{i}.ERR"),
+            tr.at(0.0, f"c{i}.EXERR"),
+            tr.at(0.0, f"c{i}.DN"),
+        )
+        for i in range(1, 5)
+    ]
     assert got == [(1, 13, 2, 0), (1, 13, 4, 0), (1, 13, 5, 0), (1, 13, 9, 0)]
 
 
 def test_lock_direction_conflicts_are_error_95(mp) -> None:
     # time driven with a lock direction (seed: only master-driven cams lock) and a pending
     # cam with a Position lock: LOCK_DIRECTION_CONFLICT
-    src = prog("", """IF k = 0 THEN
+    src = prog(
+        "",
+        """IF k = 0 THEN
   MATC(A, c1, 0, lin, 1.0, 1.0, once, immediate, 0.0, immediateforwardonly, timedrivenmode);
   MATC(B, c2, 0, lin, 1.0, 1.0, once, pending, 5.0, positionforward, masterdrivenmode);
-END_IF;""")
+END_IF;""",
+    )
     tr = mp.trace(src, ["c1.ERR", "c2.ERR", "c1.ER", "c2.ER"], scans=2)
     assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c2.ER", "c2.ERR")] == [1, 95, 1, 95]
 
 
 def test_master_driven_cam_without_mdac_is_error_93(mp) -> None:
-    src = prog("", "IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 1.0, once, immediate, 0.0, none, masterdrivenmode); END_IF;")
+    src = prog(
+        "",
+        "IF k = 0 THEN MATC(A, c1, 0, lin, 1.0, 1.0, once, immediate, 0.0, none, masterdrivenmode); END_IF;",
+    )
     tr = mp.trace(src, ["c1.ER", "c1.ERR"], scans=2)
     assert (tr.at(0.0, "c1.ER"), tr.at(0.0, "c1.ERR")) == (1, 93)
 
@@ -247,12 +378,34 @@ def test_time_cam_superimposes_on_a_jog_and_mas_all_ends_it_without_pc(mp) -> No
   MATC(A, c2, 0, lin, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode);
 END_IF;
 IF k = 500 THEN MAS(A, c3, all, yes, 1000.0, unitspersec2, no, 0.0, unitspersec3); END_IF;"""
-    tr = mp.trace(prog("", body), ["A.CommandPosition", "A.CommandVelocity", "c1.IP", "c2.IP", "c2.PC",
-                                   "A.TimeCamStatus", "c3.IP", "c3.PC", "A.StoppingStatus"], scans=600)
+    tr = mp.trace(
+        prog("", body),
+        [
+            "A.CommandPosition",
+            "A.CommandVelocity",
+            "c1.IP",
+            "c2.IP",
+            "c2.PC",
+            "A.TimeCamStatus",
+            "c3.IP",
+            "c3.PC",
+            "A.StoppingStatus",
+        ],
+        scans=600,
+    )
     # before the stop: jog ramp 0 -> 5 over 5 ms (covers 0.0125) then 5/s, plus the cam's 10/s
-    tr.check("A.CommandPosition", lambda t: ramp(t, T0, 0.502, 10.0) + ramp(t, T0 + 0.0025, 0.502, 5.0), 15.0 * CUP + F32, 0.0, 0.501)
+    tr.check(
+        "A.CommandPosition",
+        lambda t: ramp(t, T0, 0.502, 10.0) + ramp(t, T0 + 0.0025, 0.502, 5.0),
+        15.0 * CUP + F32,
+        0.0,
+        0.501,
+    )
     assert [tr.at(0.501, n) for n in ("c1.IP", "c2.IP", "A.TimeCamStatus")] == [1, 1, 1]
-    assert [tr.at(0.502, n) for n in ("c1.IP", "c2.IP", "c2.PC", "A.TimeCamStatus", "c3.IP", "A.StoppingStatus")] == [0, 0, 0, 0, 1, 1]
+    assert [
+        tr.at(0.502, n)
+        for n in ("c1.IP", "c2.IP", "c2.PC", "A.TimeCamStatus", "c3.IP", "A.StoppingStatus")
+    ] == [0, 0, 0, 0, 1, 1]
     # 15 units/s at 1000 units/s^2: 15 ms and 0.1125 units to rest
     p_stop = tr.at(0.502, "A.CommandPosition")
     assert abs(tr.at(0.599, "A.CommandPosition") - (p_stop + 0.1125)) < 1e-3
@@ -274,8 +427,12 @@ def test_initialised_profile_is_calculated_as_mccp_with_zero_slopes(mp) -> None:
   MATC(A, c1, 0, init, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
   MATC(B, c2, 0, calc, 1.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
 END_IF;"""
-    tr = mp.trace(prog(decls, body), ["init[0].Status", "A.CommandPosition", "B.CommandPosition"], scans=1100)
+    tr = mp.trace(
+        prog(decls, body), ["init[0].Status", "A.CommandPosition", "B.CommandPosition"], scans=1100
+    )
     assert tr.col("A.CommandPosition") == tr.col("B.CommandPosition")
     # the spline passes through the points: 4 at 0.3 s, 1 at 0.7 s, 6 at the end (start 0.002)
-    assert [tr.at(t, "A.CommandPosition") for t in (0.302, 0.702, 1.099)] == pytest.approx([4.0, 1.0, 6.0], abs=F32)
+    assert [tr.at(t, "A.CommandPosition") for t in (0.302, 0.702, 1.099)] == pytest.approx(
+        [4.0, 1.0, 6.0], abs=F32
+    )
     assert tr.at(1.099, "init[0].Status") == 2

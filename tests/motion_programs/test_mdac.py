@@ -39,9 +39,13 @@ def m(t: float) -> float:
     return 0.05 + 10.0 * (t - 0.012)
 
 
-def md_move(axis: str, ctl: str, dist: float, speed: float, accel: float, lock: str = "none") -> str:
-    return (f"MAM({axis}, {ctl}, incremental, {dist}, {speed}, unitspermasterunit, {accel}, unitspermasterunit2, "
-            f"{accel}, unitspermasterunit2, trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 0.0, {lock}, 0, 0);")
+def md_move(
+    axis: str, ctl: str, dist: float, speed: float, accel: float, lock: str = "none"
+) -> str:
+    return (
+        f"MAM({axis}, {ctl}, incremental, {dist}, {speed}, unitspermasterunit, {accel}, unitspermasterunit2, "
+        f"{accel}, unitspermasterunit2, trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 0.0, {lock}, 0, 0);"
+    )
 
 
 def test_master_driven_move_follows_master_distance_and_sets_ac(mp) -> None:
@@ -61,11 +65,28 @@ IF k = 100 THEN {md_move("S", "c2", 20.0, 2.0, 4.0)} END_IF;"""
         e = min(d, 10.5) - 10.0
         return 19.5 + 2.0 * e - 2.0 * e * e
 
-    tr = mp.trace(prog("", body), ["S.CommandPosition", "S.CommandVelocity", "c1.DN", "c1.IP", "c1.AC",
-                                   "c2.IP", "c2.PC", "S.CoordinatedMotionStatus"], scans=1300)
+    tr = mp.trace(
+        prog("", body),
+        [
+            "S.CommandPosition",
+            "S.CommandVelocity",
+            "c1.DN",
+            "c1.IP",
+            "c1.AC",
+            "c2.IP",
+            "c2.PC",
+            "S.CoordinatedMotionStatus",
+        ],
+        scans=1300,
+    )
     tr.check("S.CommandPosition", s, 20.0 * CUP + F32)
     assert abs(tr.at(0.6, "S.CommandVelocity") - 20.0) < 1e-3  # 2 units/mu x 10 mu/s
-    assert [tr.at(0.0, n) for n in ("c1.DN", "c1.IP", "c1.AC", "S.CoordinatedMotionStatus")] == [1, 1, 0, 1]
+    assert [tr.at(0.0, n) for n in ("c1.DN", "c1.IP", "c1.AC", "S.CoordinatedMotionStatus")] == [
+        1,
+        1,
+        0,
+        1,
+    ]
     # seed: AC set when a master-driven move goes IP on the slave; the MDAC's IP unchanged
     assert (tr.at(0.101, "c1.AC"), tr.at(0.102, "c1.AC"), tr.at(0.102, "c1.IP")) == (0, 1, 1)
     assert (tr.at(1.151, "c2.PC"), tr.at(1.152, "c2.PC"), tr.at(1.152, "c2.IP")) == (0, 1, 0)
@@ -81,8 +102,12 @@ def test_motion_type_decides_which_motions_are_master_driven(mp) -> None:
   MDAC(T, M, c4, timecam, command);
   MATC(T, c5, 0, big, 1.0, 1.0, once, immediate, 0.0, none, masterdrivenmode);
 END_IF;"""
-    tr = mp.trace(prog("", body), ["c1.DN", "c2.ER", "c2.ERR", "c3.ER", "c3.ERR", "c5.ER", "c5.DN"], scans=2)
-    assert [tr.at(0.0, n) for n in ("c1.DN", "c2.ER", "c2.ERR", "c3.ER", "c3.ERR", "c5.ER", "c5.DN")] == [1, 1, 93, 1, 93, 0, 1]
+    tr = mp.trace(
+        prog("", body), ["c1.DN", "c2.ER", "c2.ERR", "c3.ER", "c3.ERR", "c5.ER", "c5.DN"], scans=2
+    )
+    assert [
+        tr.at(0.0, n) for n in ("c1.DN", "c2.ER", "c2.ERR", "c3.ER", "c3.ERR", "c5.ER", "c5.DN")
+    ] == [1, 1, 93, 1, 93, 0, 1]
 
 
 def test_master_reference_actual_or_command(mp) -> None:
@@ -102,18 +127,38 @@ IF k = 20 THEN
   MAJ(D, cd, forward, 10.0, unitspersec, 1000.0, unitspersec2, 1000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
   {JOG_M}
 END_IF;"""
-    tr = mp.trace(prog(decls, body), ["D.CommandPosition", "D.ActualPosition", "D.PositionError", "S.CommandPosition",
-                                      "T.CommandPosition", "M.CommandPosition", "M2.CommandPosition", "co.DN"], scans=600)
+    tr = mp.trace(
+        prog(decls, body),
+        [
+            "D.CommandPosition",
+            "D.ActualPosition",
+            "D.PositionError",
+            "S.CommandPosition",
+            "T.CommandPosition",
+            "M.CommandPosition",
+            "M2.CommandPosition",
+            "co.DN",
+        ],
+        scans=600,
+    )
     tau = 1.0 / (2.0 * math.pi * 20.0)
     q = math.exp(-CUP / tau)
     lag = 10.0 * CUP * q / (1.0 - q)  # 0.06998 units
     assert tr.at(0.599, "D.PositionError") == pytest.approx(lag, rel=1e-3)
     # the slave jog ramps to 1 unit/mu over 0.001 master units (0.0005 units of slave travel)
     for t in (0.3, 0.45, 0.599):
-        assert tr.at(t, "S.CommandPosition") == pytest.approx(tr.at(t, "D.CommandPosition") - 0.0005, abs=1e-3)
-        assert tr.at(t, "T.CommandPosition") == pytest.approx(tr.at(t, "D.ActualPosition") - 0.0005, abs=1e-3)
-        assert tr.at(t, "M2.CommandPosition") == pytest.approx(tr.at(t, "M.CommandPosition") - 0.0005, abs=1e-3)
-    assert tr.at(0.599, "S.CommandPosition") - tr.at(0.599, "T.CommandPosition") == pytest.approx(lag, rel=1e-2)
+        assert tr.at(t, "S.CommandPosition") == pytest.approx(
+            tr.at(t, "D.CommandPosition") - 0.0005, abs=1e-3
+        )
+        assert tr.at(t, "T.CommandPosition") == pytest.approx(
+            tr.at(t, "D.ActualPosition") - 0.0005, abs=1e-3
+        )
+        assert tr.at(t, "M2.CommandPosition") == pytest.approx(
+            tr.at(t, "M.CommandPosition") - 0.0005, abs=1e-3
+        )
+    assert tr.at(0.599, "S.CommandPosition") - tr.at(0.599, "T.CommandPosition") == pytest.approx(
+        lag, rel=1e-2
+    )
 
 
 def test_new_master_is_taken_at_the_next_slave_motion_start(mp) -> None:
@@ -125,7 +170,9 @@ def test_new_master_is_taken_at_the_next_slave_motion_start(mp) -> None:
 IF k = 50 THEN {md_move("S", "c3", 1000.0, 1.0, 1000.0)} END_IF;
 IF k = 200 THEN MDAC(S, M2, c2, move, command); END_IF;
 IF k = 300 THEN {md_move("S", "c4", 1000.0, 1.0, 1000.0)} END_IF;"""
-    tr = mp.trace(prog("", body), ["S.CommandVelocity", "c1.IP", "c1.AC", "c2.IP", "c2.AC"], scans=400)
+    tr = mp.trace(
+        prog("", body), ["S.CommandVelocity", "c1.IP", "c1.AC", "c2.IP", "c2.AC"], scans=400
+    )
     assert tr.at(0.25, "S.CommandVelocity") == pytest.approx(10.0, abs=1e-3)
     assert [tr.at(0.25, n) for n in ("c1.IP", "c1.AC", "c2.IP", "c2.AC")] == [1, 1, 1, 0]
     assert tr.at(0.35, "S.CommandVelocity") == pytest.approx(20.0, abs=1e-3)
@@ -141,10 +188,34 @@ def test_all_conflicts_are_error_96_until_the_link_is_broken(mp) -> None:
 END_IF;
 IF k = 10 THEN MAS(S, cj, all, no, 0.0, unitspersec2, no, 0.0, unitspersec3); END_IF;
 IF k = 20 THEN MDAC(S, M2, c5, all, command); END_IF;"""
-    tr = mp.trace(prog("", body), ["c1.IP", "c2.ER", "c2.ERR", "c3.IP", "c4.ER", "c4.ERR", "c5.DN", "c5.IP",
-                                   "S.CoordinatedMotionStatus"], scans=30)
-    assert [tr.at(0.0, n) for n in ("c1.IP", "c2.ER", "c2.ERR", "c3.IP", "c4.ER", "c4.ERR")] == [1, 1, 96, 1, 1, 96]
-    assert (tr.at(0.011, "c1.IP"), tr.at(0.012, "c1.IP"), tr.at(0.012, "S.CoordinatedMotionStatus")) == (1, 0, 0)
+    tr = mp.trace(
+        prog("", body),
+        [
+            "c1.IP",
+            "c2.ER",
+            "c2.ERR",
+            "c3.IP",
+            "c4.ER",
+            "c4.ERR",
+            "c5.DN",
+            "c5.IP",
+            "S.CoordinatedMotionStatus",
+        ],
+        scans=30,
+    )
+    assert [tr.at(0.0, n) for n in ("c1.IP", "c2.ER", "c2.ERR", "c3.IP", "c4.ER", "c4.ERR")] == [
+        1,
+        1,
+        96,
+        1,
+        1,
+        96,
+    ]
+    assert (
+        tr.at(0.011, "c1.IP"),
+        tr.at(0.012, "c1.IP"),
+        tr.at(0.012, "S.CoordinatedMotionStatus"),
+    ) == (1, 0, 0)
     assert (tr.at(0.02, "c5.DN"), tr.at(0.02, "c5.IP")) == (1, 1)
 
 
@@ -157,7 +228,9 @@ IF k = 10 THEN MAS(S, c3, move, no, 0.0, unitspersec2, no, 0.0, unitspersec3); E
 IF k = 20 THEN MAS(M, c4, all, no, 0.0, unitspersec2, no, 0.0, unitspersec3); END_IF;
 IF k = 30 THEN MAS(S, c5, all, no, 0.0, unitspersec2, no, 0.0, unitspersec3); END_IF;
 IF k = 40 THEN MGS(grp, cg, programmed); END_IF;"""
-    tr = mp.trace(prog(decls, body), ["c1.IP", "c2.IP", "c3.PC", "c4.PC", "cg.DN", "cg.PC"], scans=50)
+    tr = mp.trace(
+        prog(decls, body), ["c1.IP", "c2.IP", "c3.PC", "c4.PC", "cg.DN", "cg.PC"], scans=50
+    )
     assert [tr.at(t, "c1.IP") for t in (0.029, 0.031, 0.032)] == [1, 1, 0]
     assert (tr.at(0.029, "c3.PC"), tr.at(0.029, "c4.PC")) == (1, 1)  # the stops completed
     assert [tr.at(t, "c2.IP") for t in (0.041, 0.042)] == [1, 0]
@@ -206,7 +279,9 @@ def test_lock_position_forward_starts_the_cam_when_the_master_crosses_it(mp) -> 
   {JOG_M} MDAC(S, M, c1, timecam, command);
   MATC(S, c2, 0, big, 1.0, 1.0, once, immediate, 5.0, positionforward, masterdrivenmode);
 END_IF;"""
-    tr = mp.trace(prog("", body), ["S.CommandPosition", "S.TimeCamLockStatus", "S.TimeCamStatus"], scans=900)
+    tr = mp.trace(
+        prog("", body), ["S.CommandPosition", "S.TimeCamLockStatus", "S.TimeCamStatus"], scans=900
+    )
     tr.check("S.CommandPosition", lambda t: 2.0 * max(0.0, m(t) - 5.0), 20.0 * CUP + F32)
     assert (tr.at(0.4, "S.TimeCamStatus"), tr.at(0.4, "S.TimeCamLockStatus")) == (1, 0)
     assert tr.at(0.6, "S.TimeCamLockStatus") == 1
@@ -224,9 +299,22 @@ def test_immediate_forward_only_follows_forward_travel_only(mp) -> None:
 END_IF;
 IF k = 300 THEN {mv.format("c4", 4.0)} END_IF;
 IF k = 600 THEN {mv.format("c5", 12.0)} END_IF;"""
-    tr = mp.trace(prog("", body), ["M.CommandPosition", "S.CommandPosition", "S.TimeCamLockStatus"], scans=900)
-    got = [(tr.at(t, "M.CommandPosition"), tr.at(t, "S.CommandPosition"), tr.at(t, "S.TimeCamLockStatus")) for t in (0.25, 0.5, 0.85)]
-    assert got == [pytest.approx((10.0, 20.0, 1)), pytest.approx((4.0, 20.0, 0)), pytest.approx((12.0, 24.0, 1))]
+    tr = mp.trace(
+        prog("", body), ["M.CommandPosition", "S.CommandPosition", "S.TimeCamLockStatus"], scans=900
+    )
+    got = [
+        (
+            tr.at(t, "M.CommandPosition"),
+            tr.at(t, "S.CommandPosition"),
+            tr.at(t, "S.TimeCamLockStatus"),
+        )
+        for t in (0.25, 0.5, 0.85)
+    ]
+    assert got == [
+        pytest.approx((10.0, 20.0, 1)),
+        pytest.approx((4.0, 20.0, 0)),
+        pytest.approx((12.0, 24.0, 1)),
+    ]
     assert max(tr.col("S.CommandPosition")[:600]) == pytest.approx(20.0)  # never followed back
 
 
@@ -234,11 +322,17 @@ def test_master_driven_jog_with_a_position_lock(mp) -> None:
     # MAJ at 0.5 unit per master unit (accel 1000 per mu^2: at speed after 0.0005 mu), Position
     # Forward lock at 5: nothing until m = 5 (t = 0.507), then s = 0.5 (m - 5) - 0.000125;
     # JogLockStatus set once following
-    jog = ("MAJ(S, c2, forward, 0.5, unitspermasterunit, 1000.0, unitspermasterunit2, 1000.0, unitspermasterunit2,"
-           " trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 5.0, positionforward);")
+    jog = (
+        "MAJ(S, c2, forward, 0.5, unitspermasterunit, 1000.0, unitspermasterunit2, 1000.0, unitspermasterunit2,"
+        " trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 5.0, positionforward);"
+    )
     body = f"IF k = 0 THEN {JOG_M} MDAC(S, M, c1, jog, command); {jog} END_IF;"
-    tr = mp.trace(prog("", body), ["S.CommandPosition", "S.JogLockStatus", "S.JogStatus", "c2.IP"], scans=900)
-    tr.check("S.CommandPosition", lambda t: max(0.0, 0.5 * (m(t) - 5.0) - 0.000125), 5.0 * CUP + F32)
+    tr = mp.trace(
+        prog("", body), ["S.CommandPosition", "S.JogLockStatus", "S.JogStatus", "c2.IP"], scans=900
+    )
+    tr.check(
+        "S.CommandPosition", lambda t: max(0.0, 0.5 * (m(t) - 5.0) - 0.000125), 5.0 * CUP + F32
+    )
     assert [tr.at(0.4, n) for n in ("S.JogStatus", "S.JogLockStatus", "c2.IP")] == [1, 0, 1]
     assert tr.at(0.6, "S.JogLockStatus") == 1
 
@@ -250,5 +344,11 @@ def test_out_of_range_operands_are_error_13_with_the_operand_index(mp) -> None:
   MDAC(S, M, c1, mt, command);
   MDAC(T, M, c2, move, mr);
 END_IF;"""
-    tr = mp.trace(prog("  mt, mr : DINT;\n", body), ["c1.ER", "c1.ERR", "c1.EXERR", "c2.ERR", "c2.EXERR", "c1.IP"], scans=2)
-    assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.EXERR", "c2.ERR", "c2.EXERR", "c1.IP")] == [1, 13, 3, 13, 4, 0]
+    tr = mp.trace(
+        prog("  mt, mr : DINT;\n", body),
+        ["c1.ER", "c1.ERR", "c1.EXERR", "c2.ERR", "c2.EXERR", "c1.IP"],
+        scans=2,
+    )
+    assert [
+        tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.EXERR", "c2.ERR", "c2.EXERR", "c1.IP")
+    ] == [1, 13, 3, 13, 4, 0]

@@ -20,15 +20,33 @@ IF k = 0 THEN
 END_IF;
 k := k + 1;
 """
-WATCH = ["--watch", "X.ActualPosition", "--watch", "y.actualposition", "--watch", "X.CommandVelocity",
-         "--watch", "c1.IP", "--watch", "k"]
+WATCH = [
+    "--watch",
+    "X.ActualPosition",
+    "--watch",
+    "y.actualposition",
+    "--watch",
+    "X.CommandVelocity",
+    "--watch",
+    "c1.IP",
+    "--watch",
+    "k",
+]
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
 def test_units_group_the_subplots() -> None:
-    assert unit_of("Axis1.ActualPosition", "real") == unit_of("b.CommandPosition", "real") == "position [units]"
+    assert (
+        unit_of("Axis1.ActualPosition", "real")
+        == unit_of("b.CommandPosition", "real")
+        == "position [units]"
+    )
     assert unit_of("Axis1.PositionError", "real") == "position [units]"
-    assert unit_of("Axis1.CommandVelocity", "real") == unit_of("a.AverageVelocity", "real") == "velocity [units/s]"
+    assert (
+        unit_of("Axis1.CommandVelocity", "real")
+        == unit_of("a.AverageVelocity", "real")
+        == "velocity [units/s]"
+    )
     assert unit_of("a.CommandAcceleration", "real") == "acceleration [units/s²]"
     assert unit_of("ctl.IP", "bool") == unit_of("d.5", "bool") == "bits"
     assert unit_of("ctl.ERR", "int") == "integers" and unit_of("r", "real") == "values"
@@ -54,15 +72,21 @@ def test_xy_path_of_a_watched_coordinate_system(mp, tmp_path) -> None:
     p = tmp_path / "cs.st"
     p.write_text(SRC)
     ctl = Controller(load([p]))
-    assert _coordinate_paths(ctl, ["x.ActualPosition", "Y.ActualPosition"]) == [("XY", ["x.ActualPosition", "Y.ActualPosition"])]
-    assert _coordinate_paths(ctl, ["X.CommandPosition", "Y.CommandPosition", "k"]) == [("XY", ["X.CommandPosition", "Y.CommandPosition"])]
+    assert _coordinate_paths(ctl, ["x.ActualPosition", "Y.ActualPosition"]) == [
+        ("XY", ["x.ActualPosition", "Y.ActualPosition"])
+    ]
+    assert _coordinate_paths(ctl, ["X.CommandPosition", "Y.CommandPosition", "k"]) == [
+        ("XY", ["X.CommandPosition", "Y.CommandPosition"])
+    ]
     assert _coordinate_paths(ctl, ["X.ActualPosition", "k"]) == []
 
 
 def test_missing_matplotlib_is_one_line_and_nothing_runs(mp, tmp_path, monkeypatch) -> None:
     monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib -> ImportError
     trace = tmp_path / "t.csv"
-    code, out, err = mp.run(SRC, ["--scans", "5", "--plot", str(tmp_path / "o.png"), "--trace", str(trace)])
+    code, out, err = mp.run(
+        SRC, ["--scans", "5", "--plot", str(tmp_path / "o.png"), "--trace", str(trace)]
+    )
     assert code == 2 and out == ""
     lines = err.strip().splitlines()
     assert len(lines) == 1 and "pip install logixst[plot]" in lines[0] and "Traceback" not in err

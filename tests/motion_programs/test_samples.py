@@ -21,23 +21,63 @@ def _run(capsys, name: str, *argv: str) -> dict:  # noqa: ANN001
 
 
 @pytest.mark.parametrize(("extra", "end"), [((), 300.0), (("--set", "StopAt=2000"), 200.0)])
-def test_timecam_blend_ends_where_the_header_says(capsys, extra: tuple[str, ...], end: float) -> None:
+def test_timecam_blend_ends_where_the_header_says(
+    capsys, extra: tuple[str, ...], end: float
+) -> None:
     # Accel 50 + n Run passes of 50 + Decel 50: n = 4 by default, 2 when stopping at 2 s
-    tags = _run(capsys, "timecam_blend.st", "--duration", "4.5", *extra, "--watch", "Axis.CommandPosition",
-                "--watch", "Axis.TimeCamStatus", "--watch", "DecelCtl.PC", "--watch", "AccelProf[0].Status")
-    assert tags == {"Axis.CommandPosition": end, "Axis.TimeCamStatus": False, "DecelCtl.PC": True,
-                    "AccelProf[0].Status": 2}
+    tags = _run(
+        capsys,
+        "timecam_blend.st",
+        "--duration",
+        "4.5",
+        *extra,
+        "--watch",
+        "Axis.CommandPosition",
+        "--watch",
+        "Axis.TimeCamStatus",
+        "--watch",
+        "DecelCtl.PC",
+        "--watch",
+        "AccelProf[0].Status",
+    )
+    assert tags == {
+        "Axis.CommandPosition": end,
+        "Axis.TimeCamStatus": False,
+        "DecelCtl.PC": True,
+        "AccelProf[0].Status": 2,
+    }
 
 
 def test_flying_shear_cuts_four_pieces_in_sync(tmp_path, capsys) -> None:
     trace = tmp_path / "fs.csv"
-    tags = _run(capsys, "flying_shear.st", "--duration", "4.5", "--trace", str(trace), "--watch", "Cuts",
-                "--watch", "KnifeDown", "--watch", "Line.CommandPosition", "--watch", "Shear.CommandVelocity",
-                "--watch", "Line.CommandVelocity", "--watch", "Shear.CommandPosition")
+    tags = _run(
+        capsys,
+        "flying_shear.st",
+        "--duration",
+        "4.5",
+        "--trace",
+        str(trace),
+        "--watch",
+        "Cuts",
+        "--watch",
+        "KnifeDown",
+        "--watch",
+        "Line.CommandPosition",
+        "--watch",
+        "Shear.CommandVelocity",
+        "--watch",
+        "Line.CommandVelocity",
+        "--watch",
+        "Shear.CommandPosition",
+    )
     # line: 250 mm of ramp, then 1000 mm/s; stopped after cut 4 (from 3252 mm, 250 mm to rest)
     assert tags["Cuts"] == 4 and tags["Line.CommandPosition"] == 3502.0
     rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
-    starts = [float(r[0]) for prev, r in zip(rows, rows[1:], strict=False) if r[2] == "1" and prev[2] == "0"]
+    starts = [
+        float(r[0])
+        for prev, r in zip(rows, rows[1:], strict=False)
+        if r[2] == "1" and prev[2] == "0"
+    ]
     assert starts == [0.502, 1.502, 2.502, 3.502]
     for r in rows:
         if r[2] == "1":  # knife down: carriage in the synchronous stretch at strip speed

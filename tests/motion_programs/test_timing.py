@@ -28,12 +28,19 @@ def starts(tr) -> list[float]:  # noqa: ANN001
     return [tr.rows[i][0] for i in range(1, len(p)) if p[i] != p[i - 1]]
 
 
-@pytest.mark.parametrize(("group", "args", "cup"), [
-    ("", (), 0.002),  # implicit group: 2 ms
-    ("", ("--coarse-update", "5"), 0.005),
-    ("  grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);\n", (), 0.004),  # microseconds
-    ("  grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);\n", ("--coarse-update", "5"), 0.005),  # CLI wins
-])
+@pytest.mark.parametrize(
+    ("group", "args", "cup"),
+    [
+        ("", (), 0.002),  # implicit group: 2 ms
+        ("", ("--coarse-update", "5"), 0.005),
+        ("  grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);\n", (), 0.004),  # microseconds
+        (
+            "  grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);\n",
+            ("--coarse-update", "5"),
+            0.005,
+        ),  # CLI wins
+    ],
+)
 def test_coarse_update_period(mp, group: str, args: tuple[str, ...], cup: float) -> None:
     tr = mp.trace(jog_src(group), ["X.CommandPosition"], scans=40, args=args)
     # executed in the scan at 0 (after the update at 0): starts at the update at cup, moves
@@ -41,12 +48,18 @@ def test_coarse_update_period(mp, group: str, args: tuple[str, ...], cup: float)
     ch = starts(tr)
     assert ch[0] == pytest.approx(2 * cup)
     assert all(abs(t / cup - round(t / cup)) < 1e-9 for t in ch)
-    assert tr.at(0.039, "X.CommandPosition") == pytest.approx(10.0 * (cup * (0.039 // cup) - cup) - 5e-5, abs=1e-4)
+    assert tr.at(0.039, "X.CommandPosition") == pytest.approx(
+        10.0 * (cup * (0.039 // cup) - cup) - 5e-5, abs=1e-4
+    )
 
 
 def test_motion_group_tag_shows_the_period_in_use(mp) -> None:
-    tr = mp.trace(jog_src("  grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);\n"), ["grp.CoarseUpdatePeriod"],
-                  scans=2, args=("--coarse-update", "2.5"))
+    tr = mp.trace(
+        jog_src("  grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);\n"),
+        ["grp.CoarseUpdatePeriod"],
+        scans=2,
+        args=("--coarse-update", "2.5"),
+    )
     assert tr.col("grp.CoarseUpdatePeriod") == [2500.0, 2500.0]
 
 
@@ -64,7 +77,9 @@ def test_several_updates_between_long_scans(mp) -> None:
     # the jog executed at 0 started at 2 ms: 10 * (4 - 2) ms - 5e-5
     tr = mp.trace(jog_src(), ["X.CommandPosition"], scans=3, args=("--scan-period", "5"))
     assert tr.col("X.CommandPosition")[1] == pytest.approx(0.02 - 5e-5, abs=1e-5)
-    assert tr.col("X.CommandPosition")[2] == pytest.approx(0.08 - 5e-5, abs=1e-5)  # updates at 6, 8, 10
+    assert tr.col("X.CommandPosition")[2] == pytest.approx(
+        0.08 - 5e-5, abs=1e-5
+    )  # updates at 6, 8, 10
 
 
 def test_prescan_clears_the_motion_bits(mp) -> None:
