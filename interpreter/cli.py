@@ -292,8 +292,8 @@ def _write_plot(
         series.append(Series(name, [float(r[j]) for r in rows], kind))  # type: ignore[arg-type]
     data = PlotData(
         ", ".join(p.name for p in programs),
-        [float(r[0]) for r in rows],
-        series,  # type: ignore[arg-type]
+        [float(r[0]) for r in rows],  # type: ignore[arg-type]
+        series,
         _coordinate_paths(ctl, [w for w, _, _ in watches]),
     )
     try:

@@ -209,8 +209,10 @@ class Controller:
             )
         project = self.model.extra.get("l5x")
         where = (
-            project.context.get(span.line) if project is not None and path == project.path else None
-        )  # type: ignore[attr-defined]
+            project.context.get(span.line)  # type: ignore[attr-defined]
+            if project is not None and path == project.path  # type: ignore[attr-defined]
+            else None
+        )
         if where:
             message = f"{message} ({where})"
         return Fault(type_, code, major, message, path, span.line, span.col, count)

@@ -700,9 +700,10 @@ class Checker(LadderChecks):
         for p, e in zip(aoi.required, args[1:], strict=False):  # type: ignore[attr-defined]
             t = self.a.type_of.get(id(e))
             if p.usage == "InOut" and t is not None and not same_shape(t, p.type):
+                name_ = aoi.name  # type: ignore[attr-defined]
                 self.err(
-                    "E105", f"{aoi.name} InOut parameter {p.name} needs a {p.type}, not {t}", e.span
-                )  # type: ignore[attr-defined]
+                    "E105", f"{name_} InOut parameter {p.name} needs a {p.type}, not {t}", e.span
+                )
 
     def require_implementation(
         self, ins: Instruction, span: n.Span, language: str | None = None

@@ -91,11 +91,9 @@ class ProgramModel:
     def routine(self, name: str, program: str | None = None) -> n.Routine | None:
         """A routine by name; in an L5X project only among the routines of `program`."""
         key = name.upper()
-        scoped = program is not None and bool(self.programs)
+        scope = program.upper() if program is not None and self.programs else None
         for r in self.routines:
-            if r.name.upper() == key and (
-                not scoped or (r.program_name or "").upper() == program.upper()
-            ):  # type: ignore[union-attr]
+            if r.name.upper() == key and (scope is None or (r.program_name or "").upper() == scope):
                 return r
         return None
 
