@@ -80,6 +80,8 @@ class Instruction:
     family: str
     variadic: bool = False
     input: bool = False  # ladder input instruction: it can make the rung condition false
+    # Why the simulator does not execute it (U304 names this reason); "" when it runs.
+    unsupported: str = ""
 
     @property
     def key(self) -> str:
@@ -172,6 +174,7 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
         family=family,
         variadic=bool(raw.get("variadic", False)),
         input=bool(raw.get("input", False)),
+        unsupported=str(raw.get("unsupported", "")),
     )
 
 

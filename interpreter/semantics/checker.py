@@ -122,6 +122,12 @@ def unimplemented(ins: Instruction, language: str) -> bool:
     return not has_implementation(ins.name, language)
 
 
+def unsupported_message(ins: Instruction) -> str:
+    """The U304 message: the catalog's reason why the instruction is not simulated."""
+    reason = ins.unsupported or "this version cannot execute it yet"
+    return f"{ins.name} is recognised but not simulated: {reason}"
+
+
 def is_cam_profile_array(t: DataType) -> bool:
     return (
         isinstance(t, ArrayType) and isinstance(t.elem, StructType) and t.elem.name == "CAM_PROFILE"
@@ -709,9 +715,7 @@ class Checker(LadderChecks):
         self, ins: Instruction, span: n.Span, language: str | None = None
     ) -> None:
         if unimplemented(ins, language or self.language):
-            self.err(
-                "U304", f"{ins.name} is recognised but this version cannot execute it yet", span
-            )
+            self.err("U304", unsupported_message(ins), span)
 
     def operands(self, ins: Instruction, args: list[n.Expr], span: n.Span, plan: _Plan) -> None:
         ops, checks, required = ins.operands, plan.checks, plan.required
