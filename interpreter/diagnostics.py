@@ -77,6 +77,7 @@ _TABLE: list[tuple[str, str]] = [
     ("U303", "system attribute not simulated"),
     ("U304", "instruction recognised but not executable yet"),
     ("U305", "alias tag not simulated"),
+    ("U306", "module data not in the export"),
 ]
 
 _SEVERITY = {"S": Severity.ERROR, "E": Severity.ERROR, "W": Severity.WARNING, "U": Severity.ERROR}

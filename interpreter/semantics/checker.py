@@ -20,6 +20,7 @@ from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
 from .program import ProgramModel, Tag, const_number, module_tag_note, scoped_programs
+from .suggest import NameIndex
 from .types import (
     BOOL,
     DINT,
@@ -31,6 +32,7 @@ from .types import (
     Elementary,
     StructType,
     is_axis,
+    is_unknown,
     promote,
 )
 
@@ -249,6 +251,9 @@ class Checker(LadderChecks):
         self._visible: dict[str, Tag | None] = self._visible_cache()
         self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
         self._literal_types: dict[str, DataType | None] = {}  # Literal.type -> its data type
+        self._modules_reported: set[str] = set()  # U306 given for these modules (upper prefix)
+        self._name_index: dict[tuple[str | None, str | None], NameIndex] = {}  # per scope
+        self._hints: dict[str, str] = {}  # unknown instruction name -> its did-you-mean
 
     @property
     def scope(self) -> str | None:
@@ -350,6 +355,8 @@ class Checker(LadderChecks):
                     break
 
     def check_init(self, init: n.Init, t: DataType) -> None:
+        if is_unknown(t):
+            return  # the type is reported where declared; its data cannot be verified
         if isinstance(init, n.ArrayInit) and is_cam_profile_array(t):
             self.cam_profile_init(init, t)
             return
@@ -580,6 +587,10 @@ class Checker(LadderChecks):
     def call_stmt(self, c: n.Call) -> None:
         tag = self.lookup(c.name)
         if tag is not None and isinstance(tag.type, StructType):
+            if tag.type.unknown:  # a block of a type reported where declared: no cascade
+                for a in c.args:
+                    self.loose(a.value)
+                return
             ins = self.cat.instruction(tag.type.name, "st")
             if ins is not None:
                 self.fb_call(c, tag, ins)
@@ -611,12 +622,13 @@ class Checker(LadderChecks):
                     name_span,
                 )
             else:
-                names = sorted({i.name for i in self.cat.instructions})
-                self.err(
-                    "E103", f"unknown instruction '{name}'{self.suggest(name, names)}", name_span
-                )
+                hint = self._hints.get(name)
+                if hint is None:  # one suggestion per name, however often it is called
+                    names = sorted({i.name for i in self.cat.instructions})
+                    hint = self._hints[name] = self.suggest(name, names)
+                self.err("E103", f"unknown instruction '{name}'{hint}", name_span)
             for e in args:
-                self.expr(e)
+                self.loose(e)
             return
         if ins.kind == "function":
             self.err("E126", f"{ins.name} is a function: use it in an expression", name_span)
@@ -639,6 +651,17 @@ class Checker(LadderChecks):
                     span,
                 )
             )
+
+    def loose(self, e: n.Expr) -> None:
+        """An operand whose expected kind is unknown (the instruction or block was already
+        reported): a word that is not a tag may be an enumeration, so it is not an error."""
+        if isinstance(e, n.Placeholder | n.EnumText):
+            return
+        if _enum_text(e) is not None and not (
+            isinstance(e, n.Name) and (":" in e.ident or self.lookup(e.ident) is not None)
+        ):
+            return
+        self.expr(e)
 
     def plan(self, name: str) -> _Plan:
         """The cached catalog (or AOI) entry of an instruction name in the current language."""
@@ -953,6 +976,26 @@ class Checker(LadderChecks):
             return True
         return False
 
+    def suggest_tag(self, ident: str) -> str:
+        """Did-you-mean for an undefined tag: the closest tag visible here (bounded cost)."""
+        if self._aoi is not None:
+            key: tuple[str | None, str | None] = (None, self._aoi.name.upper())
+        else:
+            key = (self._scope.upper() if self._scope is not None else None, None)
+        index = self._name_index.get(key)
+        if index is None:
+            if self._aoi is not None:
+                names = [t.name for t in self._aoi.tags.values()]
+            else:
+                names = [
+                    t.name
+                    for t in self.model.tags.values()
+                    if t.program is None or (key[0] is not None and t.program.upper() == key[0])
+                ]
+            index = self._name_index[key] = NameIndex(names)
+        best = index.best(ident)
+        return f" (did you mean '{best}'?)" if best is not None else ""
+
     @staticmethod
     def suggest(word: str, options: list[str]) -> str:
         close = difflib.get_close_matches(word, options, n=1, cutoff=0.6)
@@ -1069,6 +1112,8 @@ class Checker(LadderChecks):
             return None
         key = e.name.upper()
         i = bt.index.get(key)  # StructType.member, without upper-casing the name twice
+        if bt.unknown:
+            return None  # (a member of) a type reported where declared: anything goes
         if i is None or key in bt.hidden:
             names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
             self.err(
@@ -1077,7 +1122,8 @@ class Checker(LadderChecks):
                 e.name_span,
             )
             return None
-        return bt.members[i][1]
+        mt = bt.members[i][1]
+        return None if isinstance(mt, StructType) and mt.unknown else mt
 
     def name(self, e: n.Name) -> DataType | None:
         ident = e.ident
@@ -1093,16 +1139,20 @@ class Checker(LadderChecks):
         if tag is _UNRESOLVED:
             tag = self.lookup(ident)
         if tag is None:
-            pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
-            names = [t.name for t in pool]
-            self.err(
-                "E101",
-                f"undefined tag '{e.ident}'{module_tag_note(self.model, e.ident) or self.suggest(e.ident, names)}",
-                e.span,
-            )
+            note = module_tag_note(self.model, ident)
+            if note:  # a module's I/O tag: one U306 per module, not an error at each use
+                module = ident.rsplit(":", 1)[0].upper()
+                if module not in self._modules_reported:
+                    self._modules_reported.add(module)
+                    self.err("U306", f"module I/O tag '{ident}'{note}; it is not simulated", e.span)
+                return None
+            self.err("E101", f"undefined tag '{ident}'{self.suggest_tag(ident)}", e.span)
             return None
         self.a.tag_of[id(e)] = tag
-        return tag.type
+        t = tag.type
+        if t.__class__ is StructType and t.unknown:  # type: ignore[union-attr]
+            return None  # its type was reported where declared: its uses are not checked
+        return t
 
     def binary(self, e: n.Binary) -> DataType | None:
         lt = self.expr(e.left)

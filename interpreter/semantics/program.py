@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from .types import ArrayType, DataType, StructType, TypeTable
+from .types import ArrayType, DataType, StructType, TypeTable, unknown_type
 
 MAX_DIMS = 3
 
@@ -107,17 +107,18 @@ class ProgramModel:
 
 
 def module_tag_note(model: ProgramModel, ident: str) -> str:
-    """Why a module I/O tag name (`Local:3:I`, `Drive1:O`) is undefined: its module's data is not
-    in the export (a connection without Decorated data, or no `<Modules>` section at all)."""
+    """Why a module I/O tag name (`Local:3:I`, `Drive1:O`) has no tag: its module's data is not
+    in the export (a connection without Decorated data, or no such module in `<Modules>`).
+    Empty for a name that is not a module tag's (every other tag name is free of ':')."""
     if ":" not in ident or ident.upper().startswith("PROGRAM:"):
         return ""
     modules: dict[str, str] = model.extra.get("modules", {})  # type: ignore[assignment]
     module = modules.get(ident.rsplit(":", 1)[0].upper())
     if module is not None:
-        return f": the data of module '{module}' for this I/O tag is not in the export (no Decorated data)"
+        return f": the data of module '{module}' is not in the export (no Decorated data)"
     if "l5x" in model.extra:
-        return ": a module I/O tag, and the module's data is not in the export"
-    return ": a module I/O tag; these exist only in an L5X export holding the module's data"
+        return ": its module is not in the export"
+    return ": module I/O tags exist only in an L5X export holding the module's data"
 
 
 def const_number(e: object) -> int | float | None:
@@ -132,28 +133,40 @@ def const_number(e: object) -> int | float | None:
 
 def resolve_typeref(
     types: TypeTable, ref: n.TypeRef, path: str, diags: list[Diagnostic]
-) -> DataType | None:
+) -> DataType:
+    """The declared type; one that cannot be resolved is reported here, once, and stands in
+    as an unknown type that accepts every use (decision 0054), so nothing cascades."""
     base = types.get(ref.name)
     if base is None:
-        diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
-        return None
+        if ":" in ref.name:  # AB:1756_DI:I:0 ...: defined by a module profile, not the export
+            diags.append(
+                diag(
+                    "U306",
+                    f"module-defined data type '{ref.name}' is not described in this export",
+                    path,
+                    ref.span,
+                )
+            )
+        else:
+            diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
+        return unknown_type(ref.name)
     if not ref.dims:
         return base
     if len(ref.dims) > MAX_DIMS:
         diags.append(
             diag("E125", f"at most {MAX_DIMS} array dimensions are allowed", path, ref.span)
         )
-        return None
+        return unknown_type(ref.name)
     sizes = []
     for lo, hi in ref.dims:
         if lo != 0:
             diags.append(diag("E125", f"Logix arrays start at 0, not {lo}", path, ref.span))
-            return None
+            return unknown_type(ref.name)
         if hi < lo:
             diags.append(
                 diag("E125", "array dimension must hold at least one element", path, ref.span)
             )
-            return None
+            return unknown_type(ref.name)
         sizes.append(hi - lo + 1)
     return ArrayType(base, tuple(sizes))
 
@@ -185,7 +198,7 @@ def define_members(
             for mname, mspan in m.names:
                 if st.member(mname) is not None:
                     diags.append(diag("E117", f"member '{mname}' is declared twice", path, mspan))
-                elif mt is not None:
+                else:
                     types.add_member(st, mname, mt)
                     if m.init is not None:
                         value = const_number(m.init)
@@ -221,10 +234,7 @@ def declare_tags(
                     )
                 )
                 continue
-            if t is not None:
-                model.tags[key] = Tag(
-                    tname, t, tspan, path, d.init, program=program, init_path=path
-                )
+            model.tags[key] = Tag(tname, t, tspan, path, d.init, program=program, init_path=path)
 
 
 def build_program(

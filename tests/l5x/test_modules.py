@@ -8,6 +8,7 @@ import pytest
 from test_project import run  # the same run-and-read-tags helper (tests/l5x is on sys.path)
 
 from interpreter.cli import main
+from interpreter.runtime.loader import load
 from interpreter.semantics.project import build_project
 from interpreter.semantics.types import ArrayType, StructType
 from interpreter.syntax.l5x import read_l5x
@@ -181,20 +182,32 @@ def test_tags_option_brings_module_tags(tmp_path: Path, capsys: pytest.CaptureFi
     assert tags == {"Bits": 8}  # 2#10_1000 AND 2#1111
 
 
-def test_undefined_module_tags_say_the_data_is_not_in_the_export(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_module_tags_without_data_get_one_diagnostic_per_module(tmp_path: Path) -> None:
+    # Rack3_Input (Rack3:2) has only L5K data and xPLC28 is not in <Modules> at all: Studio
+    # knows both from the module profiles, which the export does not hold. Each module is
+    # reported once (U306, decision 0056), however many of its tags and members are used,
+    # and nothing cascades at the uses (members, bits, operands).
     text = MODULES.read_text().replace(
-        "Counts := Rack3:1:I1.Counts;", "Counts := Rack3:2:I.Data + xPLC28:O.Pt08.Data;"
+        "Counts := Rack3:1:I1.Counts;",
+        "Counts := Rack3:2:I.Data + xPLC28:O.Pt08.Data; Counts := Rack3:2:I.Data.3"
+        " + xPLC28:I.Pt00.Data + xPLC28:O.Pt08.Data;",
     )
     path = tmp_path / "missing.L5X"
     path.write_text(text)
-    capsys.readouterr()
-    assert main(["check", str(path)]) == 1
-    out = capsys.readouterr().out.splitlines()
-    assert out[:2] == [
-        f"{path}:237:20: error E101 undefined tag 'Rack3:2:I': the data of module 'Rack3_Input' for this I/O tag"
-        " is not in the export (no Decorated data) (program MainProgram, routine Main, line 4)",
-        f"{path}:237:37: error E101 undefined tag 'xPLC28:O': a module I/O tag, and the module's data is not in"
-        " the export (program MainProgram, routine Main, line 4)",
+    found = [(d.code, d.span.line, d.span.col, d.message) for d in load([path]).diagnostics]
+    assert found == [
+        (
+            "U306",
+            237,
+            20,
+            "module I/O tag 'Rack3:2:I': the data of module 'Rack3_Input' is not in the export"
+            " (no Decorated data); it is not simulated (program MainProgram, routine Main, line 4)",
+        ),
+        (
+            "U306",
+            237,
+            37,
+            "module I/O tag 'xPLC28:O': its module is not in the export; it is not simulated"
+            " (program MainProgram, routine Main, line 4)",
+        ),
     ]
