@@ -310,6 +310,10 @@ class LadderCompiler(RoutineCompiler):
         (decision 0025)."""
         t = self.type_of(dest)
         self.place(dest)
+        if isinstance(t, StructType):  # MOV of a string (tag or literal): as ST's s := 'text'
+            self.value(src, t)
+            self.emit(Op.STORE, t, span)
+            return
         if isinstance(src, n.Literal) and isinstance(src.value, float) and t is LREAL:
             self.emit(
                 Op.CONST, (src.value, LREAL)

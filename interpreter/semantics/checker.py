@@ -151,14 +151,26 @@ def cam_points(init: n.ArrayInit) -> list[tuple[float, float, int]]:
 
 
 def int_literal_for_real(e: n.Expr, t: DataType, accepted: tuple[str, ...]) -> bool:
-    """An integer literal given where only REAL/LREAL (not its own type) is accepted."""
+    """An integer (literal or tag) given for an input that takes only REAL/LREAL: Logix
+    converts it (SPEC 9.15 for literals, decision 0054 for tags), so it is passed as a REAL."""
     return (
-        isinstance(const_number(e), int)
-        and isinstance(t, Elementary)
+        isinstance(t, Elementary)
         and t.is_integer
         and not type_matches(t, accepted)
         and any(a in ("REAL", "LREAL", "ANY_REAL") for a in accepted)
     )
+
+
+INTEGERS = frozenset(name for name, t in ELEMENTARY.items() if t.is_integer)
+
+
+def converted_inputs(ins: Instruction, op: Operand, accepted: frozenset[str]) -> frozenset[str]:
+    """The elementary types an input operand takes once Logix's conversions are counted
+    (decision 0054): any integer where a number is taken (a DINT for MAM's REAL Speed, an INT
+    for COP's DINT Length)."""
+    if op.dir != "in" or op.enum is not None or not accepted - {"BOOL"}:
+        return accepted
+    return accepted | INTEGERS
 
 
 def describe(t: DataType | None) -> str:
@@ -205,7 +217,7 @@ class _OperandCheck:
             fmt in ("tag", "memory"),
             fmt == "immediate",
             op.dir in ("out", "inout") and fmt != "immediate",
-            _elementary_accepted(op.types),
+            converted_inputs(ins, op, _elementary_accepted(op.types)),
         )
 
 
@@ -599,7 +611,21 @@ class Checker(LadderChecks):
         self.instruction(c, c.name, c.name_span, c.span, [a.value for a in c.args], named)
 
     def ladder_instr(self, i: n.LadderInstr) -> None:
-        self.instruction(i, i.name, i.name_span, i.span, i.operands, None)
+        ops = i.operands
+        for k, e in enumerate(ops):
+            if e.__class__ is n.Literal and e.type == "BOOL":  # type: ignore[attr-defined]
+                ops[k] = self.bool_tag(e)  # type: ignore[arg-type]
+        self.instruction(i, i.name, i.name_span, i.span, ops, None)
+
+    def bool_tag(self, e: n.Literal) -> n.Expr:
+        """`True` / `False` as a ladder operand: a tag when the project declares one of that name.
+
+        Studio allows tags named TRUE and FALSE, and ladder has no BOOL literals of its own
+        (decision 0054): `OTE(True)` writes the tag. Without such a tag the word stays the
+        literal it was read as."""
+        if self.lookup(e.text) is None:
+            return e
+        return n.Name(e.text, e.span)
 
     def instruction(
         self,
@@ -768,6 +794,8 @@ class Checker(LadderChecks):
                     self.operand(ins, checks[-1], e)
         if ins.family == "compare" and given >= 2:
             self.compare_kinds(ins, args)
+        elif ins.name == "MOV" and given >= 2:
+            self.move_kinds(args)
         if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err(
                 "E112", "the master axis must be a different axis from the slave", args[1].span
@@ -784,6 +812,16 @@ class Checker(LadderChecks):
         b_str = isinstance(b, StructType) and b.is_string
         if a_str != b_str:
             self.err("E116", f"{ins.name} cannot compare a STRING with a number", args[1].span)
+
+    def move_kinds(self, args: list[n.Expr]) -> None:
+        """MOV takes a STRING (tag or literal) into a STRING, or a number into a number."""
+        a, b = (self.a.type_of.get(id(e)) for e in args[:2])
+        if a is None or b is None:
+            return
+        a_str = isinstance(a, StructType) and a.is_string
+        b_str = isinstance(b, StructType) and b.is_string
+        if a_str != b_str:
+            self.err("E116", f"MOV cannot move {a} into {b}", args[1].span)
 
     def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
         """U303 for a GSV/SSV class and attribute pair the simulator does not model."""
@@ -839,8 +877,10 @@ class Checker(LadderChecks):
         if not (
             t.name in check.elementary if isinstance(t, Elementary) else type_matches(t, op.types)
         ):
-            if int_literal_for_real(e, t, op.types):
+            if int_literal_for_real(e, t, op.types) and op.dir == "in":
                 return  # SPEC 9.15: integer literals are accepted for REAL operands
+            if op.expression and "BOOL" in op.types and isinstance(const_number(e), int):
+                return  # FSC(..., 0): a constant condition, as Studio accepts (decision 0054)
             if any(x == "AXIS" for x in op.types) or is_axis(t):
                 self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)
             else:
