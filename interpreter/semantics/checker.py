@@ -752,9 +752,15 @@ class Checker(LadderChecks):
     def aoi_arguments(self, name: str, args: list[n.Expr]) -> None:
         """InOut arguments are passed by reference: they need the parameter's exact type."""
         aoi = self.model.aois[name.upper()]
-        for p, e in zip(aoi.required, args[1:], strict=False):  # type: ignore[attr-defined]
+        ops = aoi.instruction.operands[1:]  # type: ignore[attr-defined]
+        for p, op, e in zip(aoi.required, ops, args[1:], strict=False):  # type: ignore[attr-defined]
             t = self.a.type_of.get(id(e))
-            if p.usage == "InOut" and t is not None and not same_shape(t, p.type):
+            if (
+                p.usage == "InOut"
+                and t is not None
+                and type_matches(t, op.types)  # else the operand check said it already
+                and not same_shape(t, p.type)
+            ):
                 name_ = aoi.name  # type: ignore[attr-defined]
                 self.err(
                     "E105", f"{name_} InOut parameter {p.name} needs a {p.type}, not {t}", e.span

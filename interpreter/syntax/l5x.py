@@ -184,7 +184,7 @@ class _Reader:
                 if e.tag == "AddOnInstructionDefinition":
                     self.aoi(e)
                 elif e.tag == "EncodedData":
-                    self.encoded(e, "add-on instruction")
+                    self.protected_aoi(e)
         for sec in ctl.all("Tags"):
             tags, aliases = self.tags(sec)
             p.tags.extend(tags)
@@ -339,7 +339,23 @@ class _Reader:
         return None
 
     # ------------------------------------------------------------ add-on instructions
-    def aoi(self, e: XElem) -> None:
+    def protected_aoi(self, e: XElem) -> None:
+        """A source-protected AOI: its parameters are exported in clear, its local tags and
+        routines are encrypted. It is declared from its parameters, so its instance tags and
+        calls check as for any AOI; a call runs no logic (decision 0057)."""
+        if e.get("EncodedType") != "AddOnInstructionDefinition" or e.child("Parameters") is None:
+            self.encoded(e, "add-on instruction")
+            return
+        name = e.get("Name") or "?"
+        self.err(
+            "U302",
+            f"add-on instruction '{name}' is protected (encoded): calls are checked against its"
+            " parameters, and its logic does not run",
+            self.span(e),
+        )
+        self.aoi(e, encoded=False)
+
+    def aoi(self, e: XElem, encoded: bool = True) -> None:
         name = self.name_of(e, "add-on instruction")
         if name is None:
             return
@@ -371,7 +387,7 @@ class _Reader:
                 r = self.routine(re_, f"add-on instruction {name}")
                 if r is not None:
                     aoi.routines.append(r)
-        if e.child("EncodedData") is not None:
+        if encoded and e.child("EncodedData") is not None:
             self.encoded(e.child("EncodedData"), f"add-on instruction {name}")  # type: ignore[arg-type]
         self.project.aois.append(aoi)
 
