@@ -9,6 +9,7 @@ diagnostics can name them. Elements this tool does not know are ignored.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field, fields, is_dataclass
 
 from ..diagnostics import Diagnostic, diag
@@ -19,6 +20,7 @@ from .st_parser import parse_st
 from .xml_reader import Positions, XElem, XmlRejected, parse_xml
 
 ROOT = "RSLogix5000Content"
+_BIT_ALIAS = re.compile(r"\.\d+$")  # an alias for a bit: `_bSts.1`
 
 
 @dataclass(slots=True)
@@ -353,9 +355,9 @@ class _Reader:
             " parameters, and its logic does not run",
             self.span(e),
         )
-        self.aoi(e, encoded=False)
+        self.aoi(e, protected=True)
 
-    def aoi(self, e: XElem, encoded: bool = True) -> None:
+    def aoi(self, e: XElem, protected: bool = False) -> None:
         name = self.name_of(e, "add-on instruction")
         if name is None:
             return
@@ -366,6 +368,15 @@ class _Reader:
             if pname is None:
                 continue
             usage = pe.get("Usage") or "Input"
+            if pe.get("TagType") == "Alias" and protected:
+                # its target is an encrypted local tag: the parameter stays visible from
+                # outside with its own storage; only a bit alias (`_bSts.1`) shows its type
+                if not _BIT_ALIAS.search(pe.get("AliasFor")):
+                    continue
+                sp = self.span(pe)
+                bit = n.VarDecl([(pname, sp)], n.TypeRef("BOOL", [], sp), None, sp, block="VAR")
+                aoi.params.append(AoiParam(pname, usage, pe.get("Required").lower() == "true", bit))
+                continue
             if pe.get("TagType") == "Alias":
                 aoi.aliases.append(AliasDecl(pname, pe.get("AliasFor"), self.span(pe)))
                 continue
@@ -387,7 +398,7 @@ class _Reader:
                 r = self.routine(re_, f"add-on instruction {name}")
                 if r is not None:
                     aoi.routines.append(r)
-        if encoded and e.child("EncodedData") is not None:
+        if not protected and e.child("EncodedData") is not None:
             self.encoded(e.child("EncodedData"), f"add-on instruction {name}")  # type: ignore[arg-type]
         self.project.aois.append(aoi)
 

@@ -27,6 +27,7 @@ EXPORT = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
 <Parameter Name="Count" TagType="Base" DataType="DINT" Usage="Output" Radix="Decimal" Required="true" Visible="true"/>
 <Parameter Name="Buffer" TagType="Base" DataType="DINT" Dimensions="4" Usage="InOut" Required="true" Visible="true"/>
 <Parameter Name="Open" TagType="Base" DataType="BOOL" Usage="Output" Radix="Decimal" Required="false" Visible="true"/>
+<Parameter Name="Sts_EN" TagType="Alias" Usage="Output" Radix="Decimal" AliasFor="_bSts.0" Required="false" Visible="true"/>
 </Parameters>
 QUJDREVGR0hJSktMTU5PUFFSU1RVVldYWVo=
 </EncodedData>
@@ -45,7 +46,7 @@ QUJDREVGR0hJSktMTU5PUFFSU1RVVldYWVo=
 <Rung Number="0" Type="N"><Text><![CDATA[XIC(b)Valve(V1,sp,n,buf)XIC(V1.Open)OTE(b);]]></Text></Rung>
 </RLLContent></Routine>
 <Routine Name="Text" Type="ST"><STContent>
-<Line Number="0"><![CDATA[Valve(V1, 12.5, n, buf); b := V1.Open AND V1.Count > 2;]]></Line>
+<Line Number="0"><![CDATA[Valve(V1, 12.5, n, buf); b := V1.Open AND V1.Count > 2 AND V1.Sts_EN;]]></Line>
 </STContent></Routine>
 </Routines>
 </Program>
@@ -61,8 +62,16 @@ def check(tmp_path: Path, buffer: str = "DINT") -> list[tuple[str, int]]:
     loaded = load([path])
     st = loaded.model.types.get("VALVE")
     assert isinstance(st, StructType)
-    # the instance holds the parameters shown in clear (locals are encrypted)
-    assert [m for m, _ in st.members][:5] == ["EnableIn", "EnableOut", "Setpoint", "Count", "Open"]
+    # the instance holds the parameters shown in clear (locals are encrypted); an alias
+    # parameter for a bit of an encrypted local is a BOOL of its own
+    assert [(m, str(t)) for m, t in st.members][:6] == [
+        ("EnableIn", "BOOL"),
+        ("EnableOut", "BOOL"),
+        ("Setpoint", "REAL"),
+        ("Count", "DINT"),
+        ("Open", "BOOL"),
+        ("Sts_EN", "BOOL"),
+    ]
     return [(d.code, d.span.line) for d in loaded.diagnostics]
 
 
@@ -73,7 +82,7 @@ def test_protected_aoi_is_reported_once_and_called_with_its_parameters(tmp_path:
 
 def test_protected_aoi_arguments_are_checked(tmp_path: Path) -> None:
     # the InOut Buffer is a DINT[4]: a REAL[4] is the wrong type, in both calls
-    assert check(tmp_path, buffer="REAL") == [("U302", 5), ("E105", 29), ("E105", 32)]
+    assert check(tmp_path, buffer="REAL") == [("U302", 5), ("E105", 30), ("E105", 33)]
 
 
 def test_an_inout_array_parameter_needs_an_array(tmp_path: Path) -> None:
