@@ -399,9 +399,12 @@ class _Reader:
         self.project.programs.append(prog)
 
     def routine(self, e: XElem, owner: str) -> n.Routine | None:
-        if e.tag == "EncodedData":
+        if e.tag == "EncodedData":  # a protected routine: JSR finds it, and it runs nothing
             self.encoded(e, "routine")
-            return None
+            encoded_name = e.get("Name")
+            if not encoded_name:
+                return None
+            return n.Routine(encoded_name, "unsupported", self.path, span=self.span(e))
         if e.tag != "Routine":
             return None
         name = self.name_of(e, "routine")
@@ -410,7 +413,7 @@ class _Reader:
         where = f"{owner}, routine {name}"
         if e.child("EncodedData") is not None:
             self.encoded(e.child("EncodedData"), f"routine '{name}' of {owner}; it")  # type: ignore[arg-type]
-            return None
+            return n.Routine(name, "unsupported", self.path, span=self.span(e))
         kind = e.get("Type").upper()
         if kind == "ST":
             return self.st_routine(e, name, where)
