@@ -8,7 +8,14 @@ import math
 import numpy as np
 import pytest
 
-from interpreter.motion import AxisKind, EventKind, MotionError, MotionGroup, MoveType
+from interpreter.motion import (
+    AxisKind,
+    EventKind,
+    MotionError,
+    MotionGroup,
+    MoveType,
+    calculate_cam_profile,
+)
 from interpreter.motion.enums import GeneratorKind, HomeMode, HomeSequence, MasterReference
 from interpreter.motion.gear import GearSet
 from interpreter.motion.homing import homing_error
@@ -217,3 +224,74 @@ def test_change_dynamics_bad_values() -> None:
     assert g.change_dynamics(a, GeneratorKind.JOG, decel=-2.0).exerr == 8
     assert g.change_dynamics(a, GeneratorKind.JOG, accel_jerk=0.0).exerr == 10
     assert g.change_dynamics(a, GeneratorKind.JOG, decel_jerk=0.0).exerr == 12
+
+
+def test_change_dynamics_of_a_master_driven_jog_uses_master_units() -> None:
+    # slave jogs at 1 unit per master unit (accel 1e9: a step) behind a master at 10 units/s
+    # (a step too): slave speed 10. MCD speed 2 per master unit, accel 100 per master unit^2:
+    # the slave's native speed ramps 1 -> 2 over 0.01 master units (1 ms of master travel),
+    # then the slave runs at 2 x 10 = 20 units/s.
+    g = MotionGroup(CUP)
+    m, s = g.add_axis("M"), g.add_axis("S")
+    assert g.assign_master(s, m).ok
+    g.start_jog(s, 0, 1.0, 1e9, 1e9, master_driven=True)
+    g.start_jog(m, 0, 10.0, math.inf, math.inf)
+    run(g, 10)
+    assert g.command_velocity[s] == pytest.approx(10.0)
+    assert g.change_dynamics(s, GeneratorKind.JOG, speed=2.0, accel=100.0).ok
+    run(g, 5)
+    assert g.command_velocity[s] == pytest.approx(20.0)
+    assert g.running_limits(s, GeneratorKind.JOG) is not None
+    limits, master_driven = g.running_limits(s, GeneratorKind.JOG)  # type: ignore[misc]
+    assert (limits.speed, limits.accel, master_driven) == (2.0, 100.0, True)
+
+
+def test_group_stop_and_servo_off_end_gearing_and_homing() -> None:
+    g = MotionGroup(CUP)
+    m, s = g.add_axis("M"), g.add_axis("S")
+    d = g.add_axis("D", kind=AxisKind.CIP_DRIVE)
+    g.servo_on_axis(d)
+    rg = g.start_gear(s, m, 0, 1.0)
+    rh = g.home(d, HomeMode.PASSIVE, HomeSequence.MARKER, 0.0)
+    run(g, 2)
+    assert g.status["GearingStatus"][s] and g.status["HomingStatus"][d]
+    rs = g.stop_group()
+    ev = run(g, 2)
+    ended = {(e.handle, e.kind) for e in ev}
+    assert {(rg.handle, EventKind.ENDED), (rh.handle, EventKind.ENDED)} <= ended
+    assert (rs.handle, EventKind.COMPLETE) in ended
+    assert not g.status["GearingStatus"][s] and not g.status["HomingStatus"][d]
+    # MSF of a geared drive slave ends its gear
+    rg2 = g.start_gear(d, m, 0, 1.0)
+    run(g, 1)
+    g.servo_off_axis(d)
+    assert (rg2.handle, EventKind.ENDED) in [(e.handle, e.kind) for e in run(g, 1)]
+
+
+def test_gear_cycle_does_not_hang() -> None:
+    # A follows B and B follows A: nothing moves, levels are capped, updates stay finite
+    g = MotionGroup(CUP)
+    a, b = g.add_axis("A"), g.add_axis("B")
+    assert g.start_gear(a, b, 0, 1.0).ok and g.start_gear(b, a, 0, 1.0).ok
+    run(g, 5)
+    assert g.command_position.tolist() == [0.0, 0.0]
+
+
+def test_redefine_keeps_a_running_time_cam_shape() -> None:
+    # a time cam 0 -> 10 over 1 s (linear: 10 units/s) on A; MRP +100 at 0.5 s: afterwards
+    # A = 100 + cam(t), the cam still completes at 1 s with A = 110
+    g = MotionGroup(CUP)
+    a = g.add_axis("A")
+    prof = calculate_cam_profile([0.0, 1.0], [0.0, 10.0], [0, 0])
+    r = g.start_time_cam(a, prof)
+    run(g, 501)  # start update + 0.5 s
+    assert g.command_position[a] == pytest.approx(5.0, abs=1e-9)
+    g.redefine_position(a, True, MasterReference.COMMAND, 100.0)
+    done = None
+    for k in range(1, 600):
+        ev = g.update()
+        if (r.handle, EventKind.COMPLETE) in [(e.handle, e.kind) for e in ev]:
+            done = k
+            break
+    assert done == 500
+    assert g.command_position[a] == pytest.approx(110.0, abs=1e-9)

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+import pytest
 from motion_trace import CUP
 
 F32 = 1e-4
@@ -96,12 +97,15 @@ def test_fraction_of_counts_and_opposite_direction(mp) -> None:
     tr.check("A.CommandPosition", at_update(lambda t: -3.0 * m(t)), 3 * F32)
 
 
-def test_clutch_ramps_to_the_geared_speed_then_locks(mp) -> None:
+@pytest.mark.parametrize(("accel", "units"), [(100.0, "unitspersec2"), (10.0, "%ofmaximum")])
+def test_clutch_ramps_to_the_geared_speed_then_locks(mp, accel: float, units: str) -> None:
     # MAG at t = 0.1 (engages at the update 0.102) on a master at 10 units/s, ratio 2, clutch
-    # 100 units/s^2: the slave ramps 0 -> 20 units/s in v/a = 0.2 s, covering 20^2 / 200 = 2,
+    # 100 units/s^2 (or 10 % of S.MaximumAccel 1000): the slave ramps 0 -> 20 units/s in
+    # v/a = 0.2 s, covering 20^2 / 200 = 2,
     #   s(t) = 50 (t - 0.102)^2 until 0.302, then locked: 2 + 2 (m(t) - m(0.302)).
+    gear = mag("S", "c1", "same", 2.0, clutch="enabled", accel=accel, units=units)
     body = f"""IF k = 0 THEN {JOG_M} END_IF;
-IF k = 100 THEN {mag("S", "c1", "same", 2.0, clutch="enabled", accel=100.0)} END_IF;"""
+IF k = 100 THEN {gear} END_IF;"""
 
     def s(t: float) -> float:
         if t <= 0.102:
@@ -199,12 +203,18 @@ JOG_T = (
 )
 
 
-def mcd(kind: str, speed: float | None = None, accel: float | None = None, ctl: str = "c2") -> str:
+def mcd(
+    kind: str,
+    speed: float | None = None,
+    accel: float | None = None,
+    ctl: str = "c2",
+    speed_units: str = "unitspersec",
+) -> str:
     cs, sp = ("yes", speed) if speed is not None else ("no", 0.0)
     ca, ac = ("yes", accel) if accel is not None else ("no", 0.0)
     return (
         f"MCD(T, {ctl}, {kind}, {cs}, {sp}, {ca}, {ac}, no, 0.0, no, 0.0, no, 0.0, "
-        "unitspersec, unitspersec2, unitspersec2, unitspersec3);"
+        f"{speed_units}, unitspersec2, unitspersec2, unitspersec3);"
     )
 
 
@@ -218,11 +228,15 @@ def x_move(t: float) -> float:
     return 0.5 + 10.0 * (t - 0.102)
 
 
-def test_mcd_raises_the_speed_of_a_move_which_keeps_its_end_point(mp) -> None:
-    # MCD Move speed 20 at t = 0.5 (update 0.502, x = 4.5 at 10 units/s, 15.5 to go):
-    # accel 10 -> 20 in 0.1 s (1.5 units), decel 20 -> 0 in 0.2 s (2 units), cruise
-    # 15.5 - 3.5 = 12 at 20 units/s (0.6 s): PC at 0.502 + 0.9 = 1.402, end at 20.
-    body = f"IF k = 0 THEN {MOVE_T} END_IF;\nIF k = 500 THEN {mcd('move', speed=20.0)} END_IF;"
+@pytest.mark.parametrize(("speed", "units"), [(20.0, "unitspersec"), (2.0, "%ofmaximum")])
+def test_mcd_raises_the_speed_of_a_move_which_keeps_its_end_point(
+    mp, speed: float, units: str
+) -> None:
+    # MCD Move speed 20 (or 2 % of T.MaximumSpeed 1000) at t = 0.5 (update 0.502, x = 4.5 at
+    # 10 units/s, 15.5 to go): accel 10 -> 20 in 0.1 s (1.5 units), decel 20 -> 0 in 0.2 s
+    # (2 units), cruise 15.5 - 3.5 = 12 at 20 units/s (0.6 s): PC at 0.502 + 0.9 = 1.402.
+    change = mcd("move", speed=speed, speed_units=units)
+    body = f"IF k = 0 THEN {MOVE_T} END_IF;\nIF k = 500 THEN {change} END_IF;"
 
     def x(t: float) -> float:
         if t <= 0.502:
