@@ -129,13 +129,8 @@ def mcd(
             return
     units = [whole(u) for u in (speed_units, accel_units, decel_units, jerk_units)]
     rate_units = (UNITS_PER_SEC, PERCENT_OF_MAX, PER_MASTER_UNIT)
-    for k, (u, ok) in enumerate(
-        zip(
-            units,
-            (rate_units, rate_units, rate_units, (*rate_units, PERCENT_OF_TIME, 6)),
-            strict=True,
-        )
-    ):
+    allowed = (rate_units,) * 3 + ((*rate_units, PERCENT_OF_TIME, PERCENT_OF_TIME_MD),)
+    for k, (u, ok) in enumerate(zip(units, allowed, strict=True)):
         if u not in ok:
             fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MCD_SPEED_UNITS + k)
             return

@@ -292,3 +292,16 @@ IF k = 500 THEN {mcd("jog", speed=0.0)} {mcd("jog", speed=-1.0, ctl="c3")} END_I
     assert (tr.at(0.5, "c3.ERR"), tr.at(0.5, "c3.EXERR")) == (13, 4)
     assert (tr.at(0.0, "c4.DN"), tr.at(0.0, "c4.ER")) == (1, 0)
     assert CUP == 0.002
+
+
+def test_mcd_units_of_the_other_mode_are_a_units_conflict(mp) -> None:
+    # a time-driven jog changed with Units per MasterUnit: 94 MDSC Units Conflict; mixing
+    # the modes among the changed values is 94 as well
+    md = mcd("jog", speed=2.0, ctl="c3", speed_units="unitspermasterunit")
+    mixed = (
+        "MCD(T, c4, jog, yes, 2.0, yes, 5.0, no, 0.0, no, 0.0, no, 0.0, "
+        "unitspersec, unitspermasterunit2, unitspersec2, unitspersec3);"
+    )
+    body = f"IF k = 0 THEN {JOG_T} END_IF;\nIF k = 10 THEN {md} {mixed} END_IF;"
+    tr = mp.trace(prog("", body), ["c3.ERR", "c4.ERR", "c1.IP"], scans=12)
+    assert (tr.at(0.01, "c3.ERR"), tr.at(0.01, "c4.ERR"), tr.at(0.011, "c1.IP")) == (94, 94, 1)
