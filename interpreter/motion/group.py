@@ -259,8 +259,7 @@ class MotionGroup:
         self._cams.remove(cams)
         self._drop_pending(axis, ev)
         self._cam_claim.discard(axis)
-        for h, _, _ in self._gears.remove(self._gears.rows_on(axis)):
-            ev.append((h, EventKind.ENDED, axis))
+        self._end_gears(axis, ev)
         self._end_homing(axis, ev)
         self.command_velocity[axis] = 0.0
         self.command_acceleration[axis] = 0.0
@@ -561,10 +560,9 @@ class MotionGroup:
                 ev.append((c.handle, EventKind.ENDED, axis))
             self._cams.remove(cams)
             self._cam_claim.discard(axis)
-            for h, _, v in self._gears.remove(self._gears.rows_on(axis)):
-                v_time += v
+            if len(self._gears.rows_on(axis)):
+                v_time += self._end_gears(axis, ev)
                 same_units = False
-                ev.append((h, EventKind.ENDED, axis))
         clock, link_handle = None, 0
         v0 = v_time
         if master_driven:
@@ -684,9 +682,7 @@ class MotionGroup:
             self._cams.remove(cams)
             self._drop_pending(axis, ev)
         if stop_type in (StopType.ALL, StopType.GEAR):
-            for gh, _, v in self._gears.remove(self._gears.rows_on(axis)):
-                v0 += v
-                ev.append((gh, EventKind.ENDED, axis))
+            v0 += self._end_gears(axis, ev)
         if stop_type in (StopType.ALL, StopType.HOME):
             self._end_homing(axis, ev)
         if stop_type == StopType.ALL:
@@ -817,10 +813,7 @@ class MotionGroup:
         h = self._handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            v0 = 0.0
-            for gh, _, v in self._gears.remove(self._gears.rows_on(slave)):
-                v0 += v
-                ev.append((gh, EventKind.ENDED, slave))
+            v0 = self._end_gears(slave, ev)
             if ref == MasterReference.ACTUAL:
                 mpos, mvel = self.actual_position[master], self.actual_velocity[master]
             else:
@@ -833,6 +826,15 @@ class MotionGroup:
 
         self._post.append(apply)
         return StartResult(handle=h)
+
+    def _end_gears(self, slave: int, ev: list[tuple[int, EventKind, int]]) -> float:
+        """End the gearing of a slave; returns the velocity it contributed (for hand-overs)."""
+        v0 = 0.0
+        for h, _, v in self._gears.remove(self._gears.rows_on(slave)):
+            v0 += v
+            ev.append((h, EventKind.ENDED, slave))
+            self._levels_dirty = True
+        return v0
 
     # -- dynamics changes (MCD) ---------------------------------------------------------
     def change_dynamics(
