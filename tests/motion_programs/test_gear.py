@@ -305,3 +305,26 @@ def test_mcd_units_of_the_other_mode_are_a_units_conflict(mp) -> None:
     body = f"IF k = 0 THEN {JOG_T} END_IF;\nIF k = 10 THEN {md} {mixed} END_IF;"
     tr = mp.trace(prog("", body), ["c3.ERR", "c4.ERR", "c1.IP"], scans=12)
     assert (tr.at(0.01, "c3.ERR"), tr.at(0.01, "c4.ERR"), tr.at(0.011, "c1.IP")) == (94, 94, 1)
+
+
+def test_actual_reference_follows_a_drive_masters_actual_position(mp) -> None:
+    # D is a drive (servo lag). S is geared 1.5:1 to D's actual position, T to its command
+    # position, both engaged at rest (update 0.002, D at 0), D jogs from the update 0.004:
+    # S = 1.5 Dact and T = 1.5 Dcmd at every update. In steady state at 10 units/s the drive
+    # lags by e = v cup q / (1 - q), q = exp(-cup / tau), tau = 1/(2 pi 20 Hz) (decision
+    # 0100), so T - S = 1.5 e.
+    decls = "  D : AXIS_CIP_DRIVE := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);\n  co : MOTION_INSTRUCTION;\n"
+    jog_d = JOG_M.replace("MAJ(M, cj", "MAJ(D, cj")
+    act = mag("S", "c1", "same", 1.5, ref="actual").replace(", M,", ", D,")
+    cmd = mag("T", "c2", "same", 1.5, ref="command").replace(", M,", ", D,")
+    body = f"IF k = 0 THEN MSO(D, co); {act} {cmd} END_IF;\nIF k = 2 THEN {jog_d} END_IF;"
+    names = ["S.CommandPosition", "T.CommandPosition", "D.ActualPosition", "D.CommandPosition"]
+    tr = mp.trace(prog(decls, body), names, scans=400)
+    for t in (0.01, 0.05, 0.2, 0.399):
+        assert abs(tr.at(t, "S.CommandPosition") - 1.5 * tr.at(t, "D.ActualPosition")) < 3e-4
+        assert abs(tr.at(t, "T.CommandPosition") - 1.5 * tr.at(t, "D.CommandPosition")) < 3e-4
+    tau = 1.0 / (2.0 * math.pi * 20.0)
+    q = math.exp(-CUP / tau)
+    e = 10.0 * CUP * q / (1.0 - q)
+    lead = tr.at(0.399, "T.CommandPosition") - tr.at(0.399, "S.CommandPosition")
+    assert abs(lead - 1.5 * e) < 1e-3
