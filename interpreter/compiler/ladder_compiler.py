@@ -224,6 +224,8 @@ class LadderCompiler(RoutineCompiler):
     def instruction(self, ins: n.LadderInstr, depth: int) -> None:  # noqa: C901
         cat = self.catalog_entry(ins)
         assert cat is not None, f"unchecked ladder instruction {ins.name}"
+        if id(ins) in self.a.unsimulated:
+            return  # uses a tag that is not simulated (U306): the rung condition passes on
         name = cat.name
         ops = ins.operands
         self.site_span = ins.span  # faults inside an instruction point at the instruction

@@ -80,6 +80,9 @@ class Analysis:
     tag_of: dict[int, Tag] = field(default_factory=dict)
     system_of: dict[int, str] = field(default_factory=dict)
     diags: list[Diagnostic] = field(default_factory=list)
+    # statements and ladder instructions that use a tag which is not simulated (U306: module
+    # data not in the export): they do not execute (SPEC 9.32), the rung condition passes on
+    unsimulated: set[int] = field(default_factory=set)
 
 
 def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
@@ -264,6 +267,7 @@ class Checker(LadderChecks):
         self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
         self._literal_types: dict[str, DataType | None] = {}  # Literal.type -> its data type
         self._modules_reported: set[str] = set()  # U306 given for these modules (upper prefix)
+        self._vague = False  # the statement or instruction being checked uses such a tag
         self._name_index: dict[tuple[str | None, str | None], NameIndex] = {}  # per scope
         self._hints: dict[str, str] = {}  # unknown instruction name -> its did-you-mean
 
@@ -477,14 +481,19 @@ class Checker(LadderChecks):
             self.stmt(s)
 
     def stmt(self, s: n.Stmt) -> None:
+        self._vague = False
         if isinstance(s, n.Assign):
             self.assign(s)
+            self.settle(s)
         elif isinstance(s, n.CallStmt):
             self.call_stmt(s.call)
+            self.settle(s)
         elif isinstance(s, n.If):
             self.guard_depth += 1
             for cond, body in s.branches:
+                self._vague = False
                 self.condition(cond)
+                self.settle(s)
                 self.stmts(body)
             if s.else_body is not None:
                 self.stmts(s.else_body)
@@ -495,15 +504,25 @@ class Checker(LadderChecks):
             self.for_loop(s)
         elif isinstance(s, n.While):
             self.condition(s.cond)
+            self.settle(s)
             self.loop_body(s.body)
         elif isinstance(s, n.Repeat):
             self.loop_body(s.body)
+            self._vague = False
             self.condition(s.cond)
+            self.settle(s)
         elif isinstance(s, n.Exit):
             if self.loop_depth == 0:
                 self.err("E127", "EXIT is only allowed inside FOR, WHILE or REPEAT", s.span)
         elif isinstance(s, n.Unsupported):
             self.err("E115", f"{s.keyword} is not part of Logix Structured Text", s.span)
+
+    def settle(self, s: n.Stmt) -> None:
+        """Mark `s` as not executed when what was just checked of it uses a tag that is not
+        simulated (its condition, for IF/CASE/loops: the whole statement is skipped)."""
+        if self._vague:
+            self.a.unsimulated.add(id(s))
+            self._vague = False
 
     def loop_body(self, body: list[n.Stmt]) -> None:
         self.loop_depth += 1
@@ -519,6 +538,7 @@ class Checker(LadderChecks):
 
     def case(self, s: n.Case) -> None:
         t = self.expr(s.selector)
+        self.settle(s)
         if t is not None and not (isinstance(t, Elementary) and (t.is_integer or t.is_bool)):
             self.err("E121", f"a CASE selector must be an integer, not {t}", s.selector.span)
         self.guard_depth += 1
@@ -546,6 +566,7 @@ class Checker(LadderChecks):
                 et = self.expr(e)
                 if et is not None and not (isinstance(et, Elementary) and et.is_numeric):
                     self.err("E121", f"FOR bounds must be numbers, not {et}", e.span)
+        self.settle(s)
         self.for_vars.append(_text(s.var).upper())
         self.loop_body(s.body)
         self.for_vars.pop()
@@ -615,7 +636,10 @@ class Checker(LadderChecks):
         for k, e in enumerate(ops):
             if e.__class__ is n.Literal and e.type == "BOOL":  # type: ignore[attr-defined]
                 ops[k] = self.bool_tag(e)  # type: ignore[arg-type]
+        self._vague = False
         self.instruction(i, i.name, i.name_span, i.span, ops, None)
+        if self._vague:
+            self.a.unsimulated.add(id(i))
 
     def bool_tag(self, e: n.Literal) -> n.Expr:
         """`True` / `False` as a ladder operand: a tag when the project declares one of that name.
@@ -1169,7 +1193,10 @@ class Checker(LadderChecks):
             )
             return None
         mt = bt.members[i][1]
-        return None if isinstance(mt, StructType) and mt.unknown else mt
+        if isinstance(mt, StructType) and mt.unknown:
+            self._vague = True
+            return None
+        return mt
 
     def name(self, e: n.Name) -> DataType | None:
         ident = e.ident
@@ -1191,12 +1218,14 @@ class Checker(LadderChecks):
                 if module not in self._modules_reported:
                     self._modules_reported.add(module)
                     self.err("U306", f"module I/O tag '{ident}'{note}; it is not simulated", e.span)
+                self._vague = True
                 return None
             self.err("E101", f"undefined tag '{ident}'{self.suggest_tag(ident)}", e.span)
             return None
         self.a.tag_of[id(e)] = tag
         t = tag.type
         if t.__class__ is StructType and t.unknown:  # type: ignore[union-attr]
+            self._vague = True
             return None  # its type was reported where declared: its uses are not checked
         return t
 

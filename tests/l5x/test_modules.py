@@ -211,3 +211,26 @@ def test_module_tags_without_data_get_one_diagnostic_per_module(tmp_path: Path) 
             " (program MainProgram, routine Main, line 4)",
         ),
     ]
+
+
+def test_uses_of_module_tags_without_data_do_not_execute(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # SPEC 9.32: what uses a tag that is not simulated does not execute. The ST assignment
+    # and the IF on xPLC28:I are skipped, so Counts keeps its exported 0 (instead of 1234
+    # from Rack3:1:I1); on the rung, XIC(Rack3:2:I.Data.0) passes the rung condition on, so
+    # the rung still latches Rack3:O.Data[3].7 (-128 as a signed byte, as in the unchanged run)
+    text = (
+        MODULES.read_text()
+        .replace(
+            "Counts := Rack3:1:I1.Counts;",
+            "Counts := Rack3:2:I.Data; IF xPLC28:I.Fault THEN Counts := 5; END_IF;",
+        )
+        .replace("XIC(Rack3:I.Data[1].2)OTL(", "XIC(Rack3:I.Data[1].2)XIC(Rack3:2:I.Data.0)OTL(")
+    )
+    path = tmp_path / "skip.L5X"
+    path.write_text(text)
+    # one U306 per module (Rack3:2 in ST and on the rung, xPLC28), nothing else
+    assert [d.code for d in load([path]).diagnostics] == ["U306", "U306"]
+    tags = run(capsys, path, 1, "Counts", "Rack3:O.Data[3]", "InWord")
+    assert tags == {"Counts": 0, "Rack3:O.Data[3]": -128, "InWord": 40}
