@@ -539,8 +539,11 @@ def entry() -> None:
     import os
 
     code = _with_deep_stack(main)
-    sys.stdout.flush()
-    sys.stderr.flush()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # closed by the peer (an editor ending `logixst lsp`)
+            pass
     os._exit(code)
 
 

@@ -18,6 +18,7 @@ from pygls.lsp.server import LanguageServer
 from interpreter.syntax import nodes as n
 
 from .features import completion as comp
+from .features.actions import actions
 from .features.diagnostics import to_editor
 from .features.hover import hover
 from .features.navigation import Location, RenameRefused, definition, references, rename
@@ -365,6 +366,33 @@ def tokens_full(params: t.SemanticTokensParams) -> t.SemanticTokens:
     if an is None:
         return t.SemanticTokens(data=[])
     return t.SemanticTokens(data=encode(semantic_tokens(an)))
+
+
+@feature(
+    t.TEXT_DOCUMENT_CODE_ACTION,
+    t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix]),
+    empty=[],
+)
+def code_actions(params: t.CodeActionParams) -> list[t.CodeAction]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    uri = params.text_document.uri
+    out = []
+    for d in params.context.diagnostics:
+        r = d.range
+        span = n.Span(r.start.line + 1, r.start.character + 1, r.end.line + 1, r.end.character + 1)
+        for a in actions(an, str(d.code or ""), d.message, span):
+            edits = [t.TextEdit(_range(e.span), e.text) for e in a.edits]
+            out.append(
+                t.CodeAction(
+                    title=a.title,
+                    kind=t.CodeActionKind.QuickFix,
+                    diagnostics=[d],
+                    edit=t.WorkspaceEdit(changes={uri: edits}),
+                )
+            )
+    return out
 
 
 def run(tcp: str | None = None) -> None:

@@ -11,7 +11,7 @@ from pytest_lsp import LanguageClient
 
 from interpreter.cli import main
 
-from .conftest import open_doc, wait_diagnostics
+from lsp_client import client, open_doc, wait_diagnostics  # noqa: F401 (client is a fixture)
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
 
@@ -199,3 +199,31 @@ async def test_unknown_document_and_bad_positions_get_empty_answers(client: Lang
     assert (
         items is None or items == [] or (isinstance(items, t.CompletionList) and items.items == [])
     )
+
+
+async def test_code_actions_take_the_suggestion_or_declare_the_tag(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    text = "VAR Speed : REAL; ax : AXIS_VIRTUAL; END_VAR\nSpeed := Sped + 1.0;\nMSO(axis2, ctl);\n"
+    uri = await open_doc(client, tmp_path / "fix.st", text)
+    diags = list(client.diagnostics[uri])
+    sped = next(d for d in diags if "'Sped'" in d.message)
+    result = await client.text_document_code_action_async(
+        t.CodeActionParams(t.TextDocumentIdentifier(uri), sped.range, t.CodeActionContext([sped]))
+    )
+    titles = [a.title for a in result or [] if isinstance(a, t.CodeAction)]
+    assert "Change to 'Speed'" in titles
+    ctl = next(d for d in diags if "'ctl'" in d.message)
+    result = await client.text_document_code_action_async(
+        t.CodeActionParams(t.TextDocumentIdentifier(uri), ctl.range, t.CodeActionContext([ctl]))
+    )
+    declare = next(
+        a for a in result or [] if isinstance(a, t.CodeAction) and a.title.startswith("Declare")
+    )
+    # MSO's second operand is a MOTION_INSTRUCTION; the one-line VAR block gets the
+    # declaration just before its END_VAR (column 38, 0-based).
+    assert declare.title == "Declare 'ctl' as MOTION_INSTRUCTION"
+    assert declare.edit is not None and declare.edit.changes is not None
+    [edit] = declare.edit.changes[uri]
+    assert edit.new_text == "ctl : MOTION_INSTRUCTION; "
+    assert (edit.range.start.line, edit.range.start.character) == (0, text.index("END_VAR"))
