@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
+from interpreter.syntax import nodes as n
 from lsp.features.actions import actions
 from lsp.features.context import Where, classify
 from lsp.workspace import Workspace
-from interpreter.syntax import nodes as n
 
 
 def ctx(text: str, language: str = "st"):  # type: ignore[no-untyped-def]

@@ -6,12 +6,11 @@ import json
 from pathlib import Path
 
 import pytest
+from lsp_client import open_doc, wait_diagnostics
 from lsprotocol import types as t
 from pytest_lsp import LanguageClient
 
 from interpreter.cli import main
-
-from lsp_client import client, open_doc, wait_diagnostics  # noqa: F401 (client is a fixture)
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
 
