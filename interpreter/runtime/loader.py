@@ -14,12 +14,14 @@ from ..semantics.program import ProgramModel, build_program
 from ..semantics.project import build_project, controller_scope
 from ..semantics.types import TypeTable
 from ..syntax import nodes as n
+from ..syntax.l5k import read_l5k
 from ..syntax.l5x import L5XProject, read_l5x
 from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
 SUFFIXES = (".st", ".rll")  # program files `run` and `check` read
+PROJECT_SUFFIXES = (".l5x", ".l5k")  # whole-project exports: XML and text form (SPEC 2.3, 2.3a)
 
 
 class InputError(Exception):
@@ -68,7 +70,7 @@ def read_text(path: Path) -> str:
 
 
 def is_project(path: Path) -> bool:
-    return path.suffix.lower() == ".l5x"
+    return path.suffix.lower() in PROJECT_SUFFIXES
 
 
 def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
@@ -81,16 +83,20 @@ def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
         routine, diags = parse_rll(read_text(path), str(path))
         return [routine], diags
     raise InputError(
-        f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})"
+        f"{path}: unsupported file type '{path.suffix}' (expected .st, .rll, .L5X or .L5K)"
     )
 
 
 def read_project(path: Path) -> tuple[L5XProject | None, list[Diagnostic]]:
-    return read_l5x(read_bytes(path), str(path))
+    """An .L5X or .L5K export; both give the same project model."""
+    data = read_bytes(path)
+    if path.suffix.lower() == ".l5k":
+        return read_l5k(data, str(path))
+    return read_l5x(data, str(path))
 
 
 def load_project(path: Path) -> Loaded:
-    """One .L5X export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
+    """One .L5X or .L5K export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
     project, diags = read_project(path)
     if project is None:
         return Loaded(ProgramModel(path.stem, [], TypeTable()), Analysis(), diags)
@@ -125,18 +131,19 @@ def gc_paused() -> Iterator[None]:
 def load(paths: list[Path], tags: Path | None = None) -> Loaded:
     """Parse and verify the files of one program (SPEC 2.4): routine name = file stem.
 
-    `tags` is an .L5X export whose data types and controller tags the files use (SPEC 9.16).
+    `tags` is an .L5X or .L5K export whose data types and controller tags the files use
+    (SPEC 9.16).
     """
     if not paths:
         raise InputError("no program file given")
     if any(is_project(p) for p in paths):
         if len(paths) > 1:
             raise InputError(
-                "an .L5X file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
+                "an .L5X or .L5K file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
             )
         if tags is not None:
             raise InputError(
-                "--tags gives controller tags to .st/.rll files; an .L5X project has its own"
+                "--tags gives controller tags to .st/.rll files; an .L5X or .L5K project has its own"
             )
         with gc_paused():
             return load_project(paths[0])
@@ -155,7 +162,7 @@ def _load(paths: list[Path], tags: Path | None) -> Loaded:
     shared: tuple[list[n.VarDecl], str] | None = None
     if tags is not None:
         if not is_project(tags):
-            raise InputError(f"{tags}: --tags expects an .L5X export")
+            raise InputError(f"{tags}: --tags expects an .L5X or .L5K export")
         project, tdiags = read_project(tags)
         diags.extend(tdiags)
         if project is not None:
