@@ -35,7 +35,11 @@ _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?::[A-Za-z0-9_]+)*")
 _KEY = re.compile(r"([^,;()\"'\n]*?)\s*:=")
 _INT = re.compile(r"[+-]?\d+")
-_SPACE = re.compile(r"\s+")
+_WS = re.compile(r"(?:\s+|\(\*.*?\*\))*", re.S)
+_QUOTED = {
+    '"': re.compile(r'"(?:\$.|[^"$])*"', re.S),
+    "'": re.compile(r"'(?:\$.|[^'$])*'", re.S),
+}
 _SHOWN = re.compile(r"\S{1,20}")
 _TARGET = re.compile(r"[^\s(;]+")
 _RC = re.compile(r"RC\s*:", re.I)
@@ -123,18 +127,9 @@ class _Reader:
     # ------------------------------------------------------------ lexing
     def ws(self) -> None:
         """Skip white space and `(* ... *)` comments (the export's header is one)."""
-        t = self.t
-        while True:
-            m = _SPACE.match(t, self.i)
-            if m:
-                self.i = m.end()
-            if t.startswith("(*", self.i):
-                end = t.find("*)", self.i + 2)
-                if end < 0:
-                    raise _Fatal("comment '(*' is not closed", self.i)
-                self.i = end + 2
-                continue
-            return
+        self.i = _WS.match(self.t, self.i).end()  # type: ignore[union-attr]  # matches empty
+        if self.t.startswith("(*", self.i):
+            raise _Fatal("comment '(*' is not closed", self.i)
 
     def peek(self, s: str) -> bool:
         self.ws()
@@ -170,16 +165,10 @@ class _Reader:
 
     def quoted_end(self, start: int) -> int:
         """Offset after the `"..."` (or `'...'`) string starting at `start` ($ escapes)."""
-        t, q, j = self.t, self.t[start], start + 1
-        while j < len(t):
-            c = t[j]
-            if c == "$":
-                j += 2
-                continue
-            if c == q:
-                return j + 1
-            j += 1
-        raise _Fatal("string is not closed", start)
+        m = _QUOTED[self.t[start]].match(self.t, start)
+        if m is None:
+            raise _Fatal("string is not closed", start)
+        return m.end()
 
     def attrs(self) -> dict[str, _Attr]:
         """`(Name := value, ...)` when one follows; keys upper-cased, values as written."""
