@@ -33,6 +33,7 @@ from .xml_reader import Positions
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 # Type and module names may hold ':' (module-defined `AB:1756_DI:I:0`, `Ctrl:Partner`).
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?::[A-Za-z0-9_]+)*")
+_MODULE = re.compile(r"\$?[A-Za-z_][A-Za-z0-9_]*(?::[A-Za-z0-9_]+)*")  # `$NoName`: unnamed
 _KEY = re.compile(r"([^,;()\"'\n]*?)\s*:=")
 _INT = re.compile(r"[+-]?\d+")
 _WS = re.compile(r"(?:\s+|\(\*.*?\*\))*", re.S)
@@ -398,9 +399,11 @@ class _Reader:
     def module(self, off: int) -> None:
         """Only the module's place is read (the name of its I/O tags, decision 0048): an L5K
         export gives connection data as bare values without the module-defined types."""
-        name, _ = self.word("a module name", _NAME)
+        name, _ = self.word("a module name", _MODULE)
         attrs = self.attrs()
         self.skip_to_end("MODULE", off)
+        if name.startswith("$"):
+            return  # a module without a name of its own (a drive's peripheral): no I/O tags
         parent = attrs["PARENT"].text.strip() if "PARENT" in attrs else ""
         slot = attrs["SLOT"].text.strip() if "SLOT" in attrs else ""
         node = attrs["NODEADDRESS"].text.strip() if "NODEADDRESS" in attrs else ""
