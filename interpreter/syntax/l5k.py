@@ -265,7 +265,7 @@ class _Reader:
             if m.group(0) == end:
                 self.i = m.end()
                 return
-            if m.group(0).startswith("END_"):
+            if m.group(0) in _ENDS:  # a tag may be called END_POS; END_PROGRAM ends a block
                 raise _Fatal(
                     f"{m.group(0)} where END_{kw} was expected (opened at line {self.line_of(opened)})",
                     m.start(),
@@ -746,6 +746,14 @@ class _Reader:
         self.project.tasks.append(TaskDecl(name, kind, rate, priority, progs, inhibited, sp))
 
 
+_ENDS = {
+    "END_" + kw
+    for kw in (
+        "CONTROLLER DATATYPE MODULE ADD_ON_INSTRUCTION_DEFINITION PARAMETERS LOCAL_TAGS TAG "
+        "PROGRAM ROUTINE ST_ROUTINE FBD_ROUTINE SFC_ROUTINE TASK ENCODED_DATA CONNECTION "
+        "CHILD_PROGRAMS LOGIC CONFIG TREND QUICK_WATCH PARAMETER_CONNECTION"
+    ).split()
+}
 _ROUTINES = {
     "ROUTINE": "ladder",
     "ST_ROUTINE": "structured text",

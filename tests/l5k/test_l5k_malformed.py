@@ -171,3 +171,16 @@ def test_a_project_is_given_alone(capsys: pytest.CaptureFixture[str], tmp_path: 
     capsys.readouterr()
     assert main(["run", str(FIX / "st_project.L5K"), str(st)]) == 2
     assert "an .L5X or .L5K file is a whole project" in capsys.readouterr().err
+
+
+def test_a_tag_named_like_an_end_keyword(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # only the END_ keywords of blocks end blocks: END_POS is an ordinary tag name
+    text = GOOD.replace("\t\tB : DINT := 2;\n", "\t\tB : DINT := 2;\n\t\tEND_POS : DINT := 3;\n")
+    text = text.replace("N: ADD(A,B,B);", "N: ADD(A,END_POS,B);")
+    path = tmp_path / "end.L5K"
+    path.write_text(text)
+    capsys.readouterr()
+    assert main(["run", str(path), "--scans", "2", "--json", "--watch", "B"]) == 0
+    assert json.loads(capsys.readouterr().out)["tags"] == {"B": 1 + 3}  # B := A + END_POS
