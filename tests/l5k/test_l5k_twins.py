@@ -20,7 +20,14 @@ from interpreter.cli import main
 
 HERE = Path(__file__).parent / "fixtures"
 L5X = Path(__file__).parent.parent / "l5x" / "fixtures"
-TWINS = ["st_project", "rll_project", "st_errors", "unsupported"]
+TWINS = [
+    "st_project",
+    "rll_project",
+    "st_errors",
+    "unsupported",
+    "keyword_members",
+    "program_parameters",
+]
 
 
 def check(capsys: pytest.CaptureFixture[str], path: Path) -> tuple[int, list[dict[str, Any]]]:
@@ -109,6 +116,27 @@ def test_st_project_runs_the_same_from_both_forms(capsys: pytest.CaptureFixture[
         "SpeedAlias": 7 + 2 * 25,
         "CountAlias": 30,  # V1.Hist[2]
     }
+
+
+@pytest.mark.parametrize(
+    ("name", "expected"),
+    [
+        # AND(3,5) = 2#011 AND 2#101 = 1; 7 MOD 4 = 3; Array[1] := MOD = 3;
+        # NOT := AND + Array[1] * MOD = 1 + 3 * 3 = 10
+        ("keyword_members", {"Kw.AND": 1, "Kw.MOD": 3, "Kw.Array[1]": 3, "Kw.NOT": 10}),
+        # Source runs first in the task: Level = 5; then User: Sum = 5 + 2, Scaled = 5 * 10
+        (
+            "program_parameters",
+            {"Program:Source.Level": 5, "Program:User.Sum": 7, "Program:User.Scaled": 50},
+        ),
+    ],
+)
+def test_ladder_twins_run_the_same(
+    capsys: pytest.CaptureFixture[str], name: str, expected: dict[str, Any]
+) -> None:
+    argv = ["--scans", "1"] + [a for w in expected for a in ("--watch", w)]
+    assert run(capsys, HERE / f"{name}.L5K", *argv) == expected
+    assert run(capsys, L5X / f"{name}.L5X", *argv) == expected
 
 
 def test_l5k_tags_file_supplies_controller_tags_and_types(
