@@ -429,12 +429,23 @@ class _Reader:
             if name == "ENCODED_DATA":
                 self.encoded(noff)
                 continue
+            if self.nested_block(name):
+                self.skip_to_end(name, noff)  # ALARM_CONDITION ... of tag-based alarms
+                continue
             try:
                 self.tag(name, noff, what, decls, aliases, aoi)
             except _Bad as exc:
                 self.bad(exc)
                 self.skip_statement()
         return decls, aliases
+
+    def nested_block(self, word: str) -> bool:
+        """An upper-case keyword not followed by ` : ` or `OF`, whose END_ comes later: a
+        block among the tag statements (tag names may be upper-case too, so check both)."""
+        if not word.isupper() or self.peek(":") or self.peek_word() == "OF":
+            return False
+        end = re.compile(rf"(?<![A-Za-z0-9_])END_{word}(?![A-Za-z0-9_])")
+        return end.search(self.t, self.i) is not None
 
     def tag(
         self,

@@ -184,3 +184,16 @@ def test_a_tag_named_like_an_end_keyword(
     capsys.readouterr()
     assert main(["run", str(path), "--scans", "2", "--json", "--watch", "B"]) == 0
     assert json.loads(capsys.readouterr().out)["tags"] == {"B": 1 + 3}  # B := A + END_POS
+
+
+def test_blocks_among_tag_statements_are_skipped(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # a tag-based alarm's block after its tag: not a tag statement, the next tag still reads
+    block = '\t\tALARM_CONDITION HI (Input := "A > 5", Severity := 500)\n\t\tEND_ALARM_CONDITION\n'
+    text = GOOD.replace("\t\tB : DINT := 2;\n", block + "\t\tB : DINT := 2;\n")
+    path = tmp_path / "alarm.L5K"
+    path.write_text(text)
+    capsys.readouterr()
+    assert main(["run", str(path), "--scans", "1", "--json", "--watch", "B"]) == 0
+    assert json.loads(capsys.readouterr().out)["tags"] == {"B": 1 + 2}  # ADD(A,B,B) once
