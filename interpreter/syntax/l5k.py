@@ -89,7 +89,7 @@ def read_l5k(data: bytes, path: str) -> tuple[L5XProject | None, list[Diagnostic
     try:
         project = reader.read()
     except _Fatal as exc:
-        return None, [*reader.diags, reader.error(exc)]
+        return None, [*map(reader.project.annotate, reader.diags), reader.error(exc)]
     return project, [project.annotate(d) for d in reader.diags]
 
 
@@ -243,6 +243,16 @@ class _Reader:
                 return
         raise _Fatal(self.unclosed(kw, opened), len(self.t))
 
+    def skip_unknown(self, kw: str, opened: int) -> None:
+        """A keyword this reader has no use for: a block is skipped to its END_ keyword
+        (decision 0048); anything else is reported and skipped to its ';'."""
+        end = re.compile(rf"(?<![A-Za-z0-9_])END_{kw}(?![A-Za-z0-9_])")
+        if end.search(self.t, self.i) is not None:
+            self.skip_to_end(kw, opened)
+            return
+        self.bad(_Bad(f"unknown statement '{kw}' skipped", opened))
+        self.skip_statement()
+
     def unclosed(self, kw: str, opened: int) -> str:
         return f"{kw} opened at line {self.line_of(opened)} is not closed: the file ends before END_{kw}"
 
@@ -317,7 +327,7 @@ class _Reader:
                 "TASK": self.task,
             }.get(kw)
             if handler is None:
-                self.skip_to_end(kw, koff)  # CONFIG, TREND, QUICK_WATCH, PARAMETER_CONNECTION ...
+                self.skip_unknown(kw, koff)  # CONFIG, TREND, QUICK_WATCH, PARAMETER_CONNECTION ...
                 continue
             self.guarded(kw, koff, partial(handler, koff))
         self.ws()
@@ -566,7 +576,7 @@ class _Reader:
             elif kw == "ENCODED_DATA":
                 self.encoded(koff)
             else:
-                self.skip_to_end(kw, koff)  # HISTORY_ENTRY ...
+                self.skip_unknown(kw, koff)  # HISTORY_ENTRY ...
         self.project.aois.append(aoi)
 
     # ------------------------------------------------------------ programs and routines
@@ -595,7 +605,7 @@ class _Reader:
             elif kw == "ENCODED_DATA":
                 self.encoded(koff)
             else:
-                self.skip_to_end(kw, koff)  # CHILD_PROGRAMS ...
+                self.skip_unknown(kw, koff)  # CHILD_PROGRAMS ...
         self.project.programs.append(prog)
 
     def routine(self, kw: str, off: int, owner: str) -> n.Routine | None:
@@ -639,7 +649,7 @@ class _Reader:
             m = _RUNG_TYPE.match(self.t, koff)
             if m is None:
                 self.i = koff + len(kw)
-                self.skip_to_end(kw, koff)  # LOGIC blocks of pending edits ...
+                self.skip_unknown(kw, koff)  # LOGIC blocks of pending edits ...
                 continue
             start = m.end()
             self.i = start

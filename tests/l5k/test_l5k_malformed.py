@@ -197,3 +197,12 @@ def test_blocks_among_tag_statements_are_skipped(
     capsys.readouterr()
     assert main(["run", str(path), "--scans", "1", "--json", "--watch", "B"]) == 0
     assert json.loads(capsys.readouterr().out)["tags"] == {"B": 1 + 2}  # ADD(A,B,B) once
+
+
+def test_unknown_statement_is_reported_and_skipped(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    text = GOOD.replace("\tTASK T", "\tSOMETHING := [1,2];\n\tTASK T")
+    code, diags, _ = check(capsys, tmp_path, text)
+    assert code == 1 and codes(diags) == [("S008", 12, 2)]
+    assert diags[0]["message"] == "unknown statement 'SOMETHING' skipped"
