@@ -147,3 +147,16 @@ def test_l5k_tags_file_supplies_controller_tags_and_types(
     argv = ["--scans", "2", "--watch", "Speed", "--watch", "V1.Fault"]
     tags = run(capsys, st, *argv, "--tags", str(HERE / "st_project.L5K"))
     assert tags == {"Speed": 7 + 3 + 3, "V1.Fault": True}
+
+
+def test_check_of_a_directory_takes_each_l5k_as_a_project(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    for name in ("st_errors", "st_project"):
+        (tmp_path / f"{name}.L5K").write_bytes((HERE / f"{name}.L5K").read_bytes())
+    code, diags = check(capsys, tmp_path)
+    assert code == 1  # st_errors has two errors, st_project none
+    assert sorted((Path(d["path"]).name, d["code"]) for d in diags) == [
+        ("st_errors.L5K", "E101"),
+        ("st_errors.L5K", "S001"),
+    ]
