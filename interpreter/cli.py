@@ -169,6 +169,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                         "tags": {},
                         "faults": [],
                         "diagnostics": [d.to_json() for d in loaded.diagnostics],
+                        "unsupported": _unsupported(loaded.diagnostics),
                     }
                 )
             )
@@ -220,6 +221,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                     "tags": tags,
                     "faults": [f.to_json() for f in faults],
                     "diagnostics": [d.to_json() for d in loaded.diagnostics],
+                    "unsupported": _unsupported(loaded.diagnostics),
                 }
             )
         )
@@ -228,6 +230,26 @@ def cmd_run(args: argparse.Namespace) -> int:
         for f in faults:
             print(f.text(), file=sys.stderr)
     return EXIT_OK if ok else EXIT_FAULT
+
+
+def _unsupported(diags: list[Diagnostic]) -> list[dict[str, object]]:
+    """SPEC 9.32: each place that is recognised but not simulated (a U diagnostic), once."""
+    out: list[dict[str, object]] = []
+    seen: set[tuple[str, str, int, int]] = set()
+    for d in diags:
+        key = (d.code, d.path, d.span.line, d.span.col)
+        if d.code.startswith("U") and key not in seen:
+            seen.add(key)
+            out.append(
+                {
+                    "code": d.code,
+                    "message": d.message,
+                    "file": d.path,
+                    "line": d.span.line,
+                    "column": d.span.col,
+                }
+            )
+    return out
 
 
 def _scan_count(duration: float | None, scan_period_ms: float) -> int:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from stdlib import Instruction, catalog
 
 from ..instructions.registry import LOWERED, lookup_prescan
-from ..semantics.checker import Analysis
+from ..semantics.checker import Analysis, unimplemented
 from ..semantics.ladder_check import rung_instructions
 from ..semantics.program import ProgramModel, const_number
 from ..semantics.types import BOOL, DINT, LREAL, Elementary, StructType, promote
@@ -266,6 +266,8 @@ class LadderCompiler(RoutineCompiler):
             self.when_true(depth, lambda: self.program_control(name, list(ops), ins.span))
         elif name in ("FAL", "FSC"):
             self.file_op(name, ins, depth)
+        elif unimplemented(cat, "rll"):
+            pass  # U304: not simulated; the rung condition passes on, operands keep their values
         elif cat.transitional:
             self.transitional(ins, cat, depth)
         else:

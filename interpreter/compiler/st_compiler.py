@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from stdlib import Instruction
 
-from ..semantics.checker import Analysis, FBCall, int_literal_for_real
+from ..semantics.checker import Analysis, FBCall, int_literal_for_real, unimplemented
 from ..semantics.program import ProgramModel, const_number
 from ..semantics.types import (
     BOOL,
@@ -215,6 +215,8 @@ class RoutineCompiler:
         if ins.name in ("JSR", "SBR", "RET", "TND"):
             self.program_control(ins.name, [a.value for a in c.args], c.span)
             return
+        if unimplemented(ins, "st"):  # U304: not simulated, its operands keep their values
+            return
         count = self.operands(c, ins)
         self.emit(Op.CALL, (ins.key, count, True), c.span)
 
@@ -411,6 +413,10 @@ class RoutineCompiler:
             return self.binary(e, t)
         if isinstance(e, n.Call):
             ins = self.a.call_of[id(e)]
+            if unimplemented(ins, "st"):  # U304: a function not simulated reads as 0
+                assert isinstance(t, Elementary)
+                self.emit(Op.CONST, (0, t))
+                return t
             self.value(e.args[0].value, self.type_of(e.args[0].value))
             self.emit(Op.FN, (ins.key, t), e.span)
             return t

@@ -57,6 +57,10 @@ class WatchError(ValueError):
     """A --watch/--set expression does not name a valid tag reference."""
 
 
+def _not_simulated(T: object, ctx: object) -> None:
+    """The body of a routine that is not simulated: nothing happens, its tags keep their values."""
+
+
 class Controller:
     """Holds tag storage and the translated routines; `scan()` runs one program scan."""
 
@@ -114,7 +118,8 @@ class Controller:
                 code = compile_routine(self.model, self.analysis, r, self.sites)
             elif r.language == "rll":
                 code = compile_ladder(self.model, self.analysis, r, self.sites)
-            else:
+            else:  # FBD/SFC/protected (U301/U302): a JSR to it runs nothing (SPEC 9.32)
+                compiled[r.name.upper()] = _not_simulated
                 continue
             compiled[r.name.upper()] = self._translate(code, code.ops, f"_routine{tag}_{i}", ns)
             self.prescans.append(self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns))

@@ -22,7 +22,7 @@ def test_scans_and_time(st) -> None:
     assert r.json["scans"] == 7
     assert r.json["time"] == pytest.approx(0.007)  # 7 scans x 1 ms
     assert r.tags == {"n": 7}
-    assert set(r.json) == {"time", "scans", "tags", "faults", "diagnostics"}
+    assert set(r.json) == {"time", "scans", "tags", "faults", "diagnostics", "unsupported"}
     assert r.json["faults"] == [] and r.json["diagnostics"] == []
 
 
