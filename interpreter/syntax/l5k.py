@@ -21,9 +21,20 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from functools import partial
 
+from stdlib import catalog
+
 from ..diagnostics import Diagnostic, diag
 from . import nodes as n
-from .l5x import _AXIS_PARAMS, AliasDecl, AoiDecl, AoiParam, L5XProject, ProgramDecl, TaskDecl
+from .l5x import (
+    _AXIS_ENUM_PARAMS,
+    _AXIS_PARAMS,
+    AliasDecl,
+    AoiDecl,
+    AoiParam,
+    L5XProject,
+    ProgramDecl,
+    TaskDecl,
+)
 from .l5x import _remap as remap_spans
 from .l5x_data import DataReader, RawMember, _l5k_number
 from .literals import decode_text
@@ -283,7 +294,7 @@ class _Reader:
             self.i = m.end()
             yield m.group(0), m.start()
 
-    def guarded(self, kw: str, off: int, read: Callable[[], None]) -> None:
+    def guarded(self, kw: str, off: int, read: Callable[[], object]) -> None:
         """Read one block; a malformed header or body is reported and the block skipped."""
         try:
             read()
@@ -335,8 +346,10 @@ class _Reader:
             self.bad(_Bad(f"text after END_CONTROLLER: {self.found()}", self.i))
         return p
 
-    def encoded(self, off: int) -> None:
-        """`ENCODED_DATA (EncodedType := ..., Name := ...) <cipher> END_ENCODED_DATA`: U302."""
+    def encoded(self, off: int) -> n.Routine | None:
+        """`ENCODED_DATA (EncodedType := ..., Name := ...) <cipher> END_ENCODED_DATA`: U302.
+        A protected routine stays a routine that runs nothing, so JSR still finds it (as
+        the L5X reader keeps it)."""
         attrs = self.attrs()
         name = attrs["NAME"].text if "NAME" in attrs else "?"
         kind = attrs["ENCODEDTYPE"].text.upper() if "ENCODEDTYPE" in attrs else ""
@@ -351,6 +364,9 @@ class _Reader:
             f"{what} '{name}' is protected (encoded); its content cannot be read",
             self.span(off, len("ENCODED_DATA")),
         )
+        if kind != "ROUTINE" or "NAME" not in attrs or not name:
+            return None
+        return n.Routine(name, "unsupported", self.path, span=self.span(off, len("ENCODED_DATA")))
 
     # ------------------------------------------------------------ data types
     def datatype(self, off: int) -> None:
@@ -535,6 +551,13 @@ class _Reader:
             if group is not None and dtype.startswith("AXIS_") and group.text:
                 self.project.axis_groups[name.upper()] = group.text
             for key, attr in attrs.items():
+                enum_member = _AXIS_ENUM_PARAMS.get(key)
+                if enum_member is not None:  # `HomeMode := Active`: the catalog gives the number
+                    ev = catalog().enum(enum_member).lookup(attr.text.strip())
+                    if ev is not None:
+                        lit = n.Literal(ev.value, "DINT", str(ev.value), sp)
+                        members.append((enum_member, sp, lit))
+                    continue
                 member = _AXIS_PARAMS.get(key)
                 num = _l5k_number(attr.text) if member else None
                 if member and num is not None:
@@ -569,12 +592,10 @@ class _Reader:
             elif kw == "LOCAL_TAGS":
                 decls, _ = self.tag_block("LOCAL_TAGS", koff, "local tag")
                 aoi.locals.extend(decls)
-            elif kw in _ROUTINES:
-                r = self.routine(kw, koff, owner)
+            elif kw in _ROUTINES or kw == "ENCODED_DATA":
+                r = self.encoded(koff) if kw == "ENCODED_DATA" else self.routine(kw, koff, owner)
                 if r is not None:
                     aoi.routines.append(r)
-            elif kw == "ENCODED_DATA":
-                self.encoded(koff)
             else:
                 self.skip_unknown(kw, koff)  # HISTORY_ENTRY ...
         self.project.aois.append(aoi)
@@ -597,13 +618,11 @@ class _Reader:
                 tags, aliases = self.tag_block("TAG", koff, "tag")
                 prog.tags.extend(tags)
                 prog.aliases.extend(aliases)
-            elif kw in _ROUTINES:
-                r = self.routine(kw, koff, owner)
+            elif kw in _ROUTINES or kw == "ENCODED_DATA":
+                r = self.encoded(koff) if kw == "ENCODED_DATA" else self.routine(kw, koff, owner)
                 if r is not None:
                     r.program_name = name
                     prog.routines.append(r)
-            elif kw == "ENCODED_DATA":
-                self.encoded(koff)
             else:
                 self.skip_unknown(kw, koff)  # CHILD_PROGRAMS ...
         self.project.programs.append(prog)

@@ -160,3 +160,32 @@ def test_check_of_a_directory_takes_each_l5k_as_a_project(
         ("st_errors.L5K", "E101"),
         ("st_errors.L5K", "S001"),
     ]
+
+
+def test_motion_twin_homes_and_gears_the_same(capsys: pytest.CaptureFixture[str]) -> None:
+    watch = [
+        "Master.CommandPosition",
+        "Slave.CommandPosition",
+        "HomeCtl.PC",
+        "GearCtl.IP",
+        "Master.HomeMode",
+        "Master.HomeSequence",
+        "Slave.HomeMode",
+        "Slave.HomeDirection",
+        "Master.HomePosition",
+    ]
+    argv = ["--scans", "300"] + [a for w in watch for a in ("--watch", w)]
+    twin = Path(__file__).parent.parent / "motion_programs" / "fixtures"
+    from_l5k = run(capsys, HERE / "gear_home_project.L5K", *argv)
+    assert from_l5k == run(capsys, twin / "gear_home_project.L5X", *argv)
+    # Attribute texts through the catalog enumerations: Passive 0, Immediate 0, Active 1,
+    # Uni-directional Reverse 2; HomePosition 1.25000000e+001
+    assert [from_l5k[w] for w in watch[4:]] == [0, 0, 1, 2, 12.5]
+    # CoarseUpdatePeriod 4000 us. The home (master at rest: 0 -> 12.5) applies at the 4 ms
+    # update, then the jog (50 % of 100 units/s, 100 % of 1000 units/s^2) and the ratio-2
+    # gear start from 12.5. At the update of 296 ms the jog has run 0.292 s: travel
+    # 1.25 (ramp of 0.05 s to 50 units/s) + 50 x (0.292 - 0.05) = 13.35 -> master 25.85,
+    # slave 2 x 13.35 = 26.7.
+    assert from_l5k["Master.CommandPosition"] == pytest.approx(25.85, abs=1e-4)
+    assert from_l5k["Slave.CommandPosition"] == pytest.approx(26.7, abs=1e-4)
+    assert from_l5k["HomeCtl.PC"] is True and from_l5k["GearCtl.IP"] is True
