@@ -63,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--tags",
         type=Path,
         metavar="FILE.L5X",
-        help="controller tags and data types for .st/.rll files",
+        help="controller tags and data types (an .L5X or .L5K export) for .st/.rll files",
     )
     check = sub.add_parser("check", help="verify without running")
     check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
@@ -72,7 +72,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--tags",
         type=Path,
         metavar="FILE.L5X",
-        help="controller tags and data types for .st/.rll files",
+        help="controller tags and data types (an .L5X or .L5K export) for .st/.rll files",
     )
     lsp = sub.add_parser("lsp", help="language server for editors (stdio unless --tcp)")
     lsp.add_argument(
@@ -415,7 +415,7 @@ def cmd_check(args: argparse.Namespace) -> int:
                 groups.append(members)
             groups.extend([x] for x in sorted(p.iterdir()) if is_project(x))
         elif is_project(p):
-            groups.append([p])  # each .L5X is one project (SPEC 9.8)
+            groups.append([p])  # each .L5X or .L5K is one project (SPEC 9.8)
         else:
             files.append(p)
     if files:

@@ -16,14 +16,15 @@ from urllib.parse import unquote, urlparse
 from interpreter.diagnostics import Diagnostic
 from interpreter.semantics.document import (
     PROGRAM_SUFFIXES,
+    PROJECT_SUFFIXES,
     Loaded,
     Source,
     analyse_program,
     analyse_project,
+    read_export,
 )
-from interpreter.syntax.l5x import L5XProject, read_l5x
+from interpreter.syntax.l5x import L5XProject
 
-PROJECT_SUFFIXES = (".l5x",)
 MAX_DOCUMENT_CHARS = 64 * 1024 * 1024  # as the CLI's file size limit
 
 
@@ -46,7 +47,7 @@ def _header_only(text: str) -> str:
 
 
 def language_of(path: str) -> str | None:
-    """'st', 'rll' or 'l5x' by extension; None for a document logixst does not read."""
+    """'st', 'rll' or 'l5x' (an .L5X or .L5K export) by extension; None for other documents."""
     suffix = Path(path).suffix.lower()
     if suffix in PROGRAM_SUFFIXES:
         return suffix[1:]
@@ -166,5 +167,5 @@ class Workspace:
             data = Path(self.tags_path).read_bytes()
         except OSError:
             return None
-        project, _ = read_l5x(data, self.tags_path)
+        project, _ = read_export(self.tags_path, data)
         return None if project is None else (project, self.tags_path)

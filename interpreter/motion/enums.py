@@ -112,3 +112,22 @@ class EventKind(Enum):
     DECEL = "decel"
     CONSTANT = "constant"  # neither accelerating nor decelerating
     ACTIVE = "active"  # an MDAC link drove a motion that went IP (MDAC .AC)
+
+
+class HomeMode(IntEnum):
+    """AXIS HomeMode attribute."""
+
+    PASSIVE = 0
+    ACTIVE = 1
+    ABSOLUTE = 2
+
+
+class HomeSequence(IntEnum):
+    """AXIS HomeSequence attribute."""
+
+    IMMEDIATE = 0
+    SWITCH = 1
+    MARKER = 2
+    SWITCH_MARKER = 3
+    TORQUE_LEVEL = 4
+    TORQUE_LEVEL_MARKER = 5

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from interpreter.motion.clock import MasterClock
 from interpreter.motion.enums import EventKind, GeneratorKind
-from interpreter.motion.profiles import MoveProfile
+from interpreter.motion.profiles import Limits, MoveProfile
 
 
 @dataclass(slots=True)
@@ -27,6 +27,10 @@ class ProfileGen:
     v: float = 0.0  # velocity in units/s
     a: float = 0.0
     phase: EventKind | None = None
+    limits: Limits | None = None  # the dynamics it was planned with (MCD changes them)
+    goal: float = 0.0  # moves: end point in profile coordinates (a dwelling move keeps it)
+    direction: float = 1.0  # jogs: sign of the jog speed
+    t_offset: float = 0.0  # master distance at which the current profile started (MCD)
 
     def step(self, cup: float, master_pos: float, master_vel: float) -> float:
         """Advance the own clock one update; returns the position change."""
@@ -34,7 +38,7 @@ class ProfileGen:
             self.n += 1
             self.t = self.n * cup
         else:
-            self.t = self.clock.advance(master_pos)
+            self.t = self.clock.advance(master_pos) - self.t_offset
         p, v, a = self.profile.at(self.t)
         self.v_native = v
         if self.clock is None:
@@ -44,6 +48,19 @@ class ProfileGen:
         dp = p - self.last_p
         self.last_p = p
         return dp
+
+    def replan(self, profile: MoveProfile, limits: Limits) -> None:
+        """Continue on a new profile planned from the present state (its clock starts at 0
+        here); the contribution made so far is kept, the goal moves with the origin."""
+        self.goal -= self.last_p
+        if self.clock is None:
+            self.n = 0
+        else:
+            self.t_offset += self.t
+        self.t = 0.0
+        self.profile = profile
+        self.limits = limits
+        self.last_p = 0.0
 
     @property
     def finished(self) -> bool:

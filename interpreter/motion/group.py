@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -24,6 +24,7 @@ from interpreter.motion.enums import (
     ExecutionMode,
     ExecutionSchedule,
     GeneratorKind,
+    HomeMode,
     InstructionMode,
     LockDirection,
     MasterReference,
@@ -35,7 +36,9 @@ from interpreter.motion.enums import (
     StopType,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
+from interpreter.motion.gear import GearSet
 from interpreter.motion.generators import ProfileGen
+from interpreter.motion.homing import homing_error
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCam, TimeCamSet
@@ -149,6 +152,10 @@ class MotionGroup:
         self._links_pending: dict[tuple[int, MotionType], MasterLink] = {}
         self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
         self._group_stops: dict[int, _GroupStop] = {}
+        self._gears = GearSet()
+        self._last_gear_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
+        self._homing: dict[int, int] = {}  # axis -> handle of a passive homing that waits
+        self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
 
     # -- configuration ---------------------------------------------------------------
     def add_axis(
@@ -179,6 +186,8 @@ class MotionGroup:
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
         self._alpha = lag_alpha(self.tau, self.cup)
         self._last_cam_dir = np.append(self._last_cam_dir, np.int8(0))
+        self._last_gear_dir = np.append(self._last_gear_dir, np.int8(0))
+        self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
         for name_ in STATUS_BITS:
             self.status[name_] = np.zeros(len(self.axes), dtype=bool)
@@ -250,6 +259,8 @@ class MotionGroup:
         self._cams.remove(cams)
         self._drop_pending(axis, ev)
         self._cam_claim.discard(axis)
+        self._end_gears(axis, ev)
+        self._end_homing(axis, ev)
         self.command_velocity[axis] = 0.0
         self.command_acceleration[axis] = 0.0
         self._levels_dirty = True
@@ -300,6 +311,7 @@ class MotionGroup:
         return (
             any(g.axis == axis for g in self._gens)
             or bool(self._cams.on_axis(axis))
+            or bool(len(self._gears.rows_on(axis)))
             or abs(float(self.command_velocity[axis])) > _VEL_EPS
         )
 
@@ -314,6 +326,14 @@ class MotionGroup:
         for g in self._gens:
             if g.handle == handle:
                 return g.profile
+        return None
+
+    def running_limits(self, axis: int, kind: GeneratorKind) -> tuple[Limits, bool] | None:
+        """Limits of the latest running move/jog of the axis and whether it is master driven
+        (MCD: % of Time jerks and unit checks need what is in use)."""
+        for g in reversed(self._gens):
+            if g.axis == axis and g.kind == kind and g.limits is not None:
+                return g.limits, g.clock is not None
         return None
 
     def _find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
@@ -387,7 +407,7 @@ class MotionGroup:
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.MOVE]
-            remaining = sum(g.profile.end_position - g.last_p for g in replaced)
+            remaining = sum(g.goal - g.last_p for g in replaced)
             v0, clock, link = self._merge_out(
                 axis,
                 replaced,
@@ -406,6 +426,7 @@ class MotionGroup:
             if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
                 use = Limits(abs(v0), lim.accel, lim.decel, lim.accel_jerk, lim.decel_jerk)
             gen = ProfileGen(h, GeneratorKind.MOVE, axis, plan_move(dist, use, v0), clock, link)
+            gen.limits, gen.goal = use, dist
             self._add_gen(gen, ev)
 
         self._post.append(apply)
@@ -456,6 +477,7 @@ class MotionGroup:
             if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
                 target = sign * abs(v0)
             gen = ProfileGen(h, GeneratorKind.JOG, axis, plan_jog(target, lim, v0), clock, link)
+            gen.limits, gen.direction = lim, sign
             self._add_gen(gen, ev)
 
         self._post.append(apply)
@@ -538,6 +560,9 @@ class MotionGroup:
                 ev.append((c.handle, EventKind.ENDED, axis))
             self._cams.remove(cams)
             self._cam_claim.discard(axis)
+            if len(self._gears.rows_on(axis)):
+                v_time += self._end_gears(axis, ev)
+                same_units = False
         clock, link_handle = None, 0
         v0 = v_time
         if master_driven:
@@ -656,6 +681,10 @@ class MotionGroup:
                 ev.append((c.handle, EventKind.ENDED, axis))
             self._cams.remove(cams)
             self._drop_pending(axis, ev)
+        if stop_type in (StopType.ALL, StopType.GEAR):
+            v0 += self._end_gears(axis, ev)
+        if stop_type in (StopType.ALL, StopType.HOME):
+            self._end_homing(axis, ev)
         if stop_type == StopType.ALL:
             self._break_links(lambda lk: lk.slave == axis, ev)
         cfg = self.axes[axis]
@@ -670,6 +699,192 @@ class MotionGroup:
         if cam is not None:
             ev.append((cam.handle, EventKind.ENDED, axis))
             self._cams.pending_changed()
+
+    # -- position redefinition (MRP) and homing (MAH) ------------------------------------
+    def redefine_position(
+        self, axis: int, relative: bool, reference: int, position: float
+    ) -> StartResult:
+        """MRP: at the next update the selected position becomes `position` (or moves by it);
+        the other one moves with it, so the following error and running motion are kept."""
+        if reference not in MasterReference.__members__.values():
+            return bad_operand(3)
+        if not math.isfinite(position):
+            return bad_operand(4)
+        h = self._handle()
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            base = (
+                self.actual_position
+                if reference == MasterReference.ACTUAL
+                else self.command_position
+            )
+            self._shift_position(axis, position if relative else position - float(base[axis]))
+            ev.append((h, EventKind.COMPLETE, axis))
+
+        self._pre.append(apply)
+        return StartResult(handle=h)
+
+    def _shift_position(self, axis: int, delta: float) -> None:
+        """Add delta to the axis's positions; whatever follows this axis as a master keeps
+        counting travel, not positions, so its slaves do not see the jump."""
+        self.command_position[axis] += delta
+        self.actual_position[axis] += delta
+        self.shift[axis] += delta
+        self._gears.shift_master(axis, delta)
+        clocks = [g.clock for g in self._gens if g.clock is not None]
+        clocks += [c.clock for c in self._cams.cams if c.clock is not None]
+        for clock in clocks:
+            if clock.master == axis:
+                clock.start = None if clock.start is None else clock.start + delta
+                clock.prev = None if clock.prev is None else clock.prev + delta
+
+    def home(self, axis: int, mode: int, sequence: int, home_position: float) -> StartResult:
+        """MAH with the axis's homing configuration (see homing.py for what is simulated).
+
+        Immediate homing completes at the next update: the actual position becomes
+        `home_position` (the command keeps the following error); Active mode first ends
+        every motion of the axis. Passive homing that waits for a marker or torque event
+        stays in process until a stop (Home or All), servo off or shutdown ends it.
+        """
+        err, waits = homing_error(
+            bool(self.virtual[axis]), bool(self.servo_on[axis]), mode, sequence
+        )
+        if err != MotionError.OK:
+            return StartResult(error=err)
+        if not math.isfinite(home_position):
+            return StartResult(error=MotionError.ILLEGAL_HOMING_CONFIGURATION)
+        h = self._handle()
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            self._end_homing(axis, ev)
+            ev.append((h, EventKind.IN_PROCESS, axis))
+            if waits:
+                self._homing[axis] = h
+                return
+            if mode == HomeMode.ACTIVE:
+                self._kill_axis(axis, ev)
+            self._shift_position(axis, home_position - float(self.actual_position[axis]))
+            self.status["AxisHomedStatus"][axis] = True
+            ev.append((h, EventKind.COMPLETE, axis))
+
+        self._pre.append(apply)
+        return StartResult(handle=h)
+
+    def _end_homing(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
+        h = self._homing.pop(axis, None)
+        if h is not None:
+            ev.append((h, EventKind.ENDED, axis))
+
+    # -- gearing (MAG) --------------------------------------------------------------------
+    def start_gear(
+        self,
+        slave: int,
+        master: int,
+        direction: int,
+        ratio: float,
+        reference: int = MasterReference.COMMAND,
+        clutch_accel: float = math.inf,
+    ) -> StartResult:
+        """MAG: from the next update the slave adds ratio x the master's travel; a gear
+        already on the slave is replaced, its velocity carried into the clutch ramp.
+        `ratio` is unsigned by direction (Same +1, Opposite -1, Reverse / Unchanged relative
+        to the slave's present gearing direction); clutch_accel inf: lock at once."""
+        if slave == master:
+            return StartResult(error=MotionError.MASTER_AXIS_CONFLICT)
+        if direction not in (0, 1, 2, 3):
+            return bad_operand(3)
+        if not math.isfinite(ratio):
+            return bad_operand(4)
+        if reference not in MasterReference.__members__.values():
+            return bad_operand(7)
+        if not clutch_accel > 0.0:
+            return bad_operand(10)
+        if not self.servo_on[slave]:
+            return StartResult(error=MotionError.SERVO_OFF_STATE)
+        last = int(self._last_gear_dir[slave])
+        sign = {
+            CamDirection.SAME: 1,
+            CamDirection.OPPOSITE: -1,
+            CamDirection.REVERSE: -last if last else -1,
+            CamDirection.UNCHANGED: last if last else 1,
+        }[CamDirection(direction)]
+        self._last_gear_dir[slave] = sign
+        ref = self._effective_reference(master, MasterReference(reference))
+        h = self._handle()
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            v0 = self._end_gears(slave, ev)
+            if ref == MasterReference.ACTUAL:
+                mpos, mvel = self.actual_position[master], self.actual_velocity[master]
+            else:
+                mpos, mvel = self.command_position[master], self.command_velocity[master]
+            self._gears.add(
+                h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0
+            )
+            self._levels_dirty = True
+            ev.append((h, EventKind.IN_PROCESS, slave))
+
+        self._post.append(apply)
+        return StartResult(handle=h)
+
+    def _end_gears(self, slave: int, ev: list[tuple[int, EventKind, int]]) -> float:
+        """End the gearing of a slave; returns the velocity it contributed (for hand-overs)."""
+        v0 = 0.0
+        for h, _, v in self._gears.remove(self._gears.rows_on(slave)):
+            v0 += v
+            ev.append((h, EventKind.ENDED, slave))
+            self._levels_dirty = True
+        return v0
+
+    # -- dynamics changes (MCD) ---------------------------------------------------------
+    def change_dynamics(
+        self,
+        axis: int,
+        kind: GeneratorKind,
+        speed: float | None = None,
+        accel: float | None = None,
+        decel: float | None = None,
+        accel_jerk: float | None = None,
+        decel_jerk: float | None = None,
+    ) -> StartResult:
+        """MCD: the running move or jog of the axis is planned again at the next update from
+        its present velocity with the changed limits (None: unchanged); a move keeps its end
+        point. Jerks only matter for S-curve motion. Nothing running: no effect."""
+        first = 4  # faceplate index of Speed; rates follow every second operand
+        for value, index, ok in (
+            (speed, first, lambda x: math.isfinite(x) and x >= 0.0),
+            (accel, first + 2, lambda x: x > 0.0),
+            (decel, first + 4, lambda x: x > 0.0),
+            (accel_jerk, first + 6, lambda x: x > 0.0),
+            (decel_jerk, first + 8, lambda x: x > 0.0),
+        ):
+            if value is not None and not ok(value):
+                return bad_operand(index)
+        h = self._handle()
+
+        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+            for g in [g for g in self._gens if g.axis == axis and g.kind == kind]:
+                old = g.limits
+                if old is None:
+                    continue
+                s_curve = not (math.isinf(old.accel_jerk) and math.isinf(old.decel_jerk))
+                lim = replace(
+                    old,
+                    speed=old.speed if speed is None else speed,
+                    accel=old.accel if accel is None else accel,
+                    decel=old.decel if decel is None else decel,
+                    accel_jerk=old.accel_jerk if accel_jerk is None or not s_curve else accel_jerk,
+                    decel_jerk=old.decel_jerk if decel_jerk is None or not s_curve else decel_jerk,
+                )
+                v0 = g.v_native
+                if kind == GeneratorKind.JOG:
+                    prof = plan_jog(g.direction * lim.speed, lim, v0)
+                else:
+                    prof = plan_move(g.goal - g.last_p, lim, v0)
+                g.replan(prof, lim)
+
+        self._post.append(apply)
+        return StartResult(handle=h)
 
     # -- time cams -----------------------------------------------------------------------
     def start_time_cam(
@@ -773,6 +988,7 @@ class MotionGroup:
         n = len(self.axes)
         edges = [(g.axis, g.clock.master) for g in self._gens if g.clock is not None]
         edges += [(c.axis, c.clock.master) for c in self._cams.cams if c.clock is not None]
+        edges += self._gears.edges()
         level = np.zeros(n, dtype=np.intp)
         for _ in range(n):
             changed = False
@@ -790,6 +1006,7 @@ class MotionGroup:
         """Advance every axis one coarse update; returns the events of this update."""
         ev: list[tuple[int, EventKind, int]] = []
         self.time = self.updates * self.cup  # updates happen at 0, cup, 2 cup, ...
+        self.shift[:] = 0.0
         pre, self._pre = self._pre, []
         for f in pre:
             f(ev)
@@ -831,12 +1048,18 @@ class MotionGroup:
                 (self.actual_velocity, self.command_velocity),
                 ev,
             )
+            gs = self._gears.step(
+                cup,
+                None if single else (self._level, lvl),
+                (self.actual_position, self.command_position),
+                (self.actual_velocity, self.command_velocity),
+            )
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
-            if ax or len(cs.axis):
-                axes = np.concatenate((np.asarray(ax, dtype=np.intp), cs.axis))
-                dpos = np.bincount(axes, np.concatenate((dp, cs.dpos)), n)
-                vel = np.bincount(axes, np.concatenate((vv, cs.vel)), n)
-                acc = np.bincount(axes, np.concatenate((aa, cs.acc)), n)
+            if ax or len(cs.axis) or len(gs.axis):
+                axes = np.concatenate((np.asarray(ax, dtype=np.intp), cs.axis, gs.axis))
+                dpos = np.bincount(axes, np.concatenate((dp, cs.dpos, gs.dpos)), n)
+                vel = np.bincount(axes, np.concatenate((vv, cs.vel, gs.vel)), n)
+                acc = np.bincount(axes, np.concatenate((aa, cs.acc, gs.acc)), n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]
@@ -851,6 +1074,9 @@ class MotionGroup:
             f(ev)
         if post:  # generators started at this update report their start velocity now
             vel, acc = self._cams.velocity_sums(n)
+            gv, ga = self._gears.velocity_sums(n)
+            vel += gv
+            acc += ga
             for g in self._gens:
                 vel[g.axis] += g.v
                 acc[g.axis] += g.a
@@ -900,6 +1126,15 @@ class MotionGroup:
         cm[[lk.slave for lk in self._links_active.values()]] = True
         cm[[lk.slave for lk in self._links_pending.values()]] = True
         st["CoordinatedMotionStatus"] = cm
+        gear = np.zeros(n, dtype=bool)
+        gear[self._gears.slave] = True
+        st["GearingStatus"] = gear
+        lock = np.zeros(n, dtype=bool)
+        lock[self._gears.slave[self._gears.locked]] = True
+        st["GearingLockStatus"] = lock
+        homing = np.zeros(n, dtype=bool)
+        homing[list(self._homing)] = True
+        st["HomingStatus"] = homing
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         # every queued request has been applied: the claim is exactly the running cams

@@ -10,14 +10,16 @@ from pathlib import Path
 from ..diagnostics import Diagnostic
 from ..semantics.document import (
     PROGRAM_SUFFIXES,
+    PROJECT_SUFFIXES,
     Loaded,
     Source,
     analyse_program,
     analyse_project,
     parse_source,
+    read_export,
 )
 from ..syntax import nodes as n
-from ..syntax.l5x import L5XProject, read_l5x
+from ..syntax.l5x import L5XProject
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
 SUFFIXES = PROGRAM_SUFFIXES  # program files `run` and `check` read
@@ -62,7 +64,7 @@ def read_text(path: Path) -> str:
 
 
 def is_project(path: Path) -> bool:
-    return path.suffix.lower() == ".l5x"
+    return path.suffix.lower() in PROJECT_SUFFIXES
 
 
 def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
@@ -71,16 +73,17 @@ def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
         routine, diags = parse_source(Source(str(path), read_text(path)))
         return [routine], diags
     raise InputError(
-        f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})"
+        f"{path}: unsupported file type '{path.suffix}' (expected .st, .rll, .L5X or .L5K)"
     )
 
 
 def read_project(path: Path) -> tuple[L5XProject | None, list[Diagnostic]]:
-    return read_l5x(read_bytes(path), str(path))
+    """An .L5X or .L5K export; both give the same project model."""
+    return read_export(str(path), read_bytes(path))
 
 
 def load_project(path: Path) -> Loaded:
-    """One .L5X export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
+    """One .L5X or .L5K export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
     return analyse_project(str(path), read_bytes(path))
 
 
@@ -108,18 +111,19 @@ def gc_paused() -> Iterator[None]:
 def load(paths: list[Path], tags: Path | None = None) -> Loaded:
     """Parse and verify the files of one program (SPEC 2.4): routine name = file stem.
 
-    `tags` is an .L5X export whose data types and controller tags the files use (SPEC 9.16).
+    `tags` is an .L5X or .L5K export whose data types and controller tags the files use
+    (SPEC 9.16).
     """
     if not paths:
         raise InputError("no program file given")
     if any(is_project(p) for p in paths):
         if len(paths) > 1:
             raise InputError(
-                "an .L5X file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
+                "an .L5X or .L5K file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
             )
         if tags is not None:
             raise InputError(
-                "--tags gives controller tags to .st/.rll files; an .L5X project has its own"
+                "--tags gives controller tags to .st/.rll files; an .L5X or .L5K project has its own"
             )
         with gc_paused():
             return load_project(paths[0])
@@ -136,7 +140,7 @@ def _load(paths: list[Path], tags: Path | None) -> Loaded:
     tag_diags: list[Diagnostic] = []
     if tags is not None:
         if not is_project(tags):
-            raise InputError(f"{tags}: --tags expects an .L5X export")
+            raise InputError(f"{tags}: --tags expects an .L5X or .L5K export")
         project, tag_diags = read_project(tags)
         if project is not None:
             shared = (project, str(tags))

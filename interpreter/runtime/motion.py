@@ -38,7 +38,7 @@ DEFAULT_CUP_MS = 2.0
 _MG = struct_type("MOTION_GROUP").index
 
 # instructions whose motion reports completion with PC (MAJ never completes; MDAC has no PC)
-_PC_KINDS = frozenset({"MAM", "MAS", "MGS", "MATC"})
+_PC_KINDS = frozenset({"MAM", "MAS", "MGS", "MATC", "MAH"})
 
 # axis members written after every planner update (REAL) ...
 _REALS = (
@@ -262,6 +262,8 @@ class MotionRuntime:
 
     def _update(self, g: Group) -> None:
         events = g.core.update()
+        if g.core.shift.any():  # MRP / MAH: the AverageVelocity window moves with the axis
+            g.history += g.core.shift
         for ev in events:
             self._event(g, ev)
         self._active_bits(g)

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic
 from ..syntax import nodes as n
+from ..syntax.l5k import read_l5k
 from ..syntax.l5x import L5XProject, read_l5x
 from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
@@ -20,6 +21,7 @@ from .project import build_project, controller_scope
 from .types import TypeTable
 
 PROGRAM_SUFFIXES = (".st", ".rll")  # the routine files of one program (SPEC 2.4)
+PROJECT_SUFFIXES = (".l5x", ".l5k")  # whole-project exports: XML and text form (SPEC 2.3, 2.3a)
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,9 +76,16 @@ def analyse_program(sources: list[Source], tags: tuple[L5XProject, str] | None =
     return Loaded(model, analysis, diags)
 
 
+def read_export(path: str, data: bytes) -> tuple[L5XProject | None, list[Diagnostic]]:
+    """An .L5X or .L5K export (by suffix); both give the same project model."""
+    if path.lower().endswith(".l5k"):
+        return read_l5k(data, path)
+    return read_l5x(data, path)
+
+
 def analyse_project(path: str, data: bytes) -> Loaded:
-    """One .L5X export is one project (SPEC 9.8); positions are positions in its XML."""
-    project, diags = read_l5x(data, path)
+    """One .L5X/.L5K export is one project (SPEC 9.8); positions are positions in that file."""
+    project, diags = read_export(path, data)
     if project is None:
         stem = path.rsplit("/", 1)[-1].rsplit(".", 1)[0]
         return Loaded(ProgramModel(stem, [], TypeTable()), Analysis(), diags)

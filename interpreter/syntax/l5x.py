@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, is_dataclass
 
+from stdlib import catalog
+
 from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .l5x_data import DataReader, RawMember, _dims
@@ -113,6 +115,16 @@ _AXIS_PARAMS = {
     "POSITIONLOOPBANDWIDTH": "PositionLoopBandwidth",
     "COMMANDTOLERANCE": "CommandTolerance",
     "ACTUALTOLERANCE": "ActualTolerance",
+    "HOMEPOSITION": "HomePosition",
+    "HOMEOFFSET": "HomeOffset",
+    "HOMESPEED": "HomeSpeed",
+    "HOMERETURNSPEED": "HomeReturnSpeed",
+}
+# Axis parameters written as enumeration text (`HomeMode="Active"`): member and catalog enum.
+_AXIS_ENUM_PARAMS = {
+    "HOMEMODE": "HomeMode",
+    "HOMESEQUENCE": "HomeSequence",
+    "HOMEDIRECTION": "HomeDirection",
 }
 
 
@@ -314,6 +326,14 @@ class _Reader:
                 self.project.axis_groups[name.upper()] = group
             for attr, value in params.attrs.items():
                 member = _AXIS_PARAMS.get(attr.upper())
+                enum_member = _AXIS_ENUM_PARAMS.get(attr.upper())
+                if enum_member is not None:  # the catalog enumeration gives the number
+                    ev = catalog().enum(enum_member).lookup(value)
+                    if ev is not None:
+                        members.append(
+                            (enum_member, sp, n.Literal(ev.value, "DINT", str(ev.value), sp))
+                        )
+                    continue
                 if member is None:
                     continue
                 try:

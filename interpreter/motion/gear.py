@@ -1,0 +1,148 @@
+"""Electronic gearing (MAG): the slave moves by ratio x the master's travel, all gears of a
+group advanced together with numpy (one row per gear, struct-of-arrays).
+
+Each update a locked gear adds `ratio * (m - m_prev)` to its slave, m being the master's
+actual or command position at that update (masters are advanced before their slaves, so
+it is the master position of the same update). Travel is counted incrementally, so a
+redefined master position (MRP) only has to shift `prev` to leave the slave undisturbed.
+
+Clutch: a gear that does not start locked ramps its own velocity towards the geared speed
+`ratio * master velocity` at its clutch acceleration; the position integrates that velocity
+exactly for a constant acceleration ((v_old + v_new) / 2 * cup). The update at which the
+ramp reaches the geared speed locks the gear (GearingLockStatus); from then on the slave
+follows the master travel exactly. The phase lost while clutching is not made up (Logix
+matches speed, not position).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from interpreter.motion.enums import MasterReference
+
+
+@dataclass(frozen=True, slots=True)
+class GearStep:
+    """Per-gear results of one update: slave axis, position change, velocity, acceleration."""
+
+    axis: np.ndarray
+    dpos: np.ndarray
+    vel: np.ndarray
+    acc: np.ndarray
+
+
+_EMPTY = GearStep(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
+
+
+class GearSet:
+    """The gears of a motion group; the arrays are the state (at most one gear per slave)."""
+
+    def __init__(self) -> None:
+        self.handle = np.zeros(0, dtype=np.int64)
+        self.slave = np.zeros(0, dtype=np.intp)
+        self.master = np.zeros(0, dtype=np.intp)
+        self.ref = np.zeros(0, dtype=np.intp)  # 0 actual, 1 command (MasterReference values)
+        self.ratio = np.zeros(0)  # signed: the direction is applied
+        self.accel = np.zeros(0)  # clutch acceleration (inf: no clutch)
+        self.prev = np.zeros(0)  # master position at the previous update
+        self.v = np.zeros(0)  # the gear's own contribution to the slave velocity
+        self.a = np.zeros(0)
+        self.locked = np.zeros(0, dtype=bool)
+
+    def __len__(self) -> int:
+        return len(self.handle)
+
+    # -- membership ---------------------------------------------------------------
+    def add(
+        self,
+        handle: int,
+        slave: int,
+        master: int,
+        reference: MasterReference,
+        ratio: float,
+        accel: float,
+        master_pos: float,
+        master_vel: float,
+        v0: float = 0.0,
+    ) -> None:
+        """Engage a gear at this update: travel counts from master_pos; the gear starts at
+        velocity v0 (the velocity of a gear it replaces) and is locked at once when that is
+        already the geared speed or there is no clutch."""
+        target = ratio * master_vel
+        locked = math.isinf(accel) or abs(target - v0) <= 1e-12
+        v = target if locked else v0
+        self.handle = np.append(self.handle, handle)
+        self.slave = np.append(self.slave, slave)
+        self.master = np.append(self.master, master)
+        self.ref = np.append(self.ref, int(reference))
+        self.ratio = np.append(self.ratio, ratio)
+        self.accel = np.append(self.accel, accel)
+        self.prev = np.append(self.prev, master_pos)
+        self.v = np.append(self.v, v)
+        self.a = np.append(self.a, 0.0)
+        self.locked = np.append(self.locked, locked)
+
+    def rows_on(self, slave: int) -> np.ndarray:
+        return np.flatnonzero(self.slave == slave)
+
+    def remove(self, rows: np.ndarray) -> list[tuple[int, int, float]]:
+        """Drop gears; returns (handle, slave, velocity) of each, for stops and merges."""
+        out = [(int(self.handle[r]), int(self.slave[r]), float(self.v[r])) for r in rows]
+        if len(rows):
+            keep = np.ones(len(self), dtype=bool)
+            keep[rows] = False
+            for name in ("handle", "slave", "master", "ref", "ratio", "accel", "prev", "v", "a"):
+                setattr(self, name, getattr(self, name)[keep])
+            self.locked = self.locked[keep]
+        return out
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        """The master's position was redefined by delta: its travel is unchanged."""
+        self.prev[self.master == axis] += delta
+
+    def edges(self) -> list[tuple[int, int]]:
+        """(slave, master) pairs for the masters-before-slaves ordering."""
+        return list(zip(self.slave.tolist(), self.master.tolist(), strict=True))
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return np.bincount(self.slave, self.v, n), np.bincount(self.slave, self.a, n)
+
+    # -- stepping -----------------------------------------------------------------
+    def step(
+        self,
+        cup: float,
+        level_sel: tuple[np.ndarray, int] | None,
+        positions: tuple[np.ndarray, np.ndarray],
+        velocities: tuple[np.ndarray, np.ndarray],
+    ) -> GearStep:
+        """Advance the gears (all, or those whose slave has the given level) one update."""
+        if not len(self):
+            return _EMPTY
+        if level_sel is None:
+            rows = np.arange(len(self))
+        else:
+            rows = np.flatnonzero(level_sel[0][self.slave] == level_sel[1])
+            if not len(rows):
+                return _EMPTY
+        master, ref = self.master[rows], self.ref[rows]
+        m = np.where(ref == 0, positions[0][master], positions[1][master])
+        mv = np.where(ref == 0, velocities[0][master], velocities[1][master])
+        ratio, v_old, locked = self.ratio[rows], self.v[rows], self.locked[rows]
+        target = ratio * mv
+        # clutching rows: velocity ramps towards the geared speed at the clutch rate
+        room = self.accel[rows] * cup
+        dv = target - v_old
+        reach = np.abs(dv) <= room * (1.0 + 1e-9) + 1e-12  # the last ramp step, up to rounding
+        with np.errstate(invalid="ignore"):
+            v_ramp = np.where(reach, target, v_old + np.sign(dv) * room)
+        dp = np.where(locked, ratio * (m - self.prev[rows]), 0.5 * (v_old + v_ramp) * cup)
+        vel = np.where(locked, target, v_ramp)
+        acc = (vel - v_old) / cup
+        self.prev[rows] = m
+        self.v[rows] = vel
+        self.a[rows] = acc
+        self.locked[rows] = locked | reach
+        return GearStep(self.slave[rows], dp, vel, acc)
