@@ -180,6 +180,12 @@ def report(results: list[Result]) -> str:
         for p, k in pats.most_common(25):
             w(f"| {k} | {p} | {example[p][:220]} |")
         w("")
+    failed = [r for r in results if r.check_error]
+    if failed:
+        w("## Files `check` could not read\n")
+        for r in failed:
+            w(f"- `{r.entry['file']}`: {r.check_error}")
+        w("")
     w("## S diagnostics\n")
     any_s = False
     for r in results:
