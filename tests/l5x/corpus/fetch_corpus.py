@@ -56,8 +56,8 @@ def mirror_gitdir(root: Path, repo: str) -> Path | None:
     return None
 
 
-def clone_gitdir(cache: Path, repo: str) -> Path:
-    """A blob-less bare clone of github.com/<repo> in the cache (made once, fetched after)."""
+def clone_gitdir(cache: Path, repo: str, remote_base: str = "https://github.com/") -> Path:
+    """A blob-less bare clone of <remote_base><repo>.git in the cache (made once)."""
     target = cache / repo.replace("/", "+")
     if not (target / "objects").is_dir():
         cache.mkdir(parents=True, exist_ok=True)
@@ -67,7 +67,7 @@ def clone_gitdir(cache: Path, repo: str) -> Path:
                 "clone",
                 "--bare",
                 "--filter=blob:none",
-                f"https://github.com/{repo}.git",
+                f"{remote_base}{repo}.git",
                 str(target),
             ],
             check=True,
@@ -97,6 +97,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--dest", type=Path, default=DEFAULT_DEST)
     ap.add_argument("--cache", type=Path, default=DEFAULT_CACHE, help="where clones are kept")
     ap.add_argument("--manifest", type=Path, default=MANIFEST)
+    ap.add_argument(
+        "--remote-base",
+        default="https://github.com/",
+        help="where clones come from: <base><owner>/<name>.git (default GitHub)",
+    )
     args = ap.parse_args(argv)
 
     args.dest.mkdir(parents=True, exist_ok=True)
@@ -113,7 +118,7 @@ def main(argv: list[str] | None = None) -> int:
             gitdir = mirror_gitdir(args.mirror_root, repo) if args.mirror_root else None
             if gitdir is None:
                 try:
-                    gitdir = clone_gitdir(args.cache, repo)
+                    gitdir = clone_gitdir(args.cache, repo, args.remote_base)
                 except (subprocess.CalledProcessError, OSError) as exc:
                     print(f"{repo}: cannot clone ({exc})", file=sys.stderr)
                     gitdir = None
