@@ -63,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--tags",
         type=Path,
         metavar="FILE.L5X",
-        help="controller tags and data types for .st/.rll files",
+        help="controller tags and data types (an .L5X or .L5K export) for .st/.rll files",
     )
     check = sub.add_parser("check", help="verify without running")
     check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
@@ -72,7 +72,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--tags",
         type=Path,
         metavar="FILE.L5X",
-        help="controller tags and data types for .st/.rll files",
+        help="controller tags and data types (an .L5X or .L5K export) for .st/.rll files",
+    )
+    lsp = sub.add_parser("lsp", help="language server for editors (stdio unless --tcp)")
+    lsp.add_argument(
+        "--tcp",
+        metavar="HOST:PORT",
+        help="listen on a TCP port instead of stdio (e.g. 127.0.0.1:2087)",
     )
     return p
 
@@ -82,6 +88,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
         if args.command == "run":
             return cmd_run(args)
+        if args.command == "lsp":
+            return cmd_lsp(args)
         return cmd_check(args)
     except UsageError as exc:
         print(f"logixst: error: {exc}", file=sys.stderr)
@@ -97,6 +105,17 @@ def main(argv: Sequence[str] | None = None) -> int:
             file=sys.stderr,
         )
         return EXIT_USAGE
+
+
+def cmd_lsp(args: argparse.Namespace) -> int:
+    if args.tcp is not None:
+        host, sep, port = args.tcp.rpartition(":")
+        if not sep or not port.isdigit() or not 0 < int(port) < 65536:
+            raise UsageError(f"--tcp expects HOST:PORT, got '{args.tcp}'")
+    from lsp.server import run
+
+    run(args.tcp)
+    return EXIT_OK
 
 
 # ------------------------------------------------------------------ run
@@ -396,7 +415,7 @@ def cmd_check(args: argparse.Namespace) -> int:
                 groups.append(members)
             groups.extend([x] for x in sorted(p.iterdir()) if is_project(x))
         elif is_project(p):
-            groups.append([p])  # each .L5X is one project (SPEC 9.8)
+            groups.append([p])  # each .L5X or .L5K is one project (SPEC 9.8)
         else:
             files.append(p)
     if files:
@@ -520,8 +539,11 @@ def entry() -> None:
     import os
 
     code = _with_deep_stack(main)
-    sys.stdout.flush()
-    sys.stderr.flush()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # closed by the peer (an editor ending `logixst lsp`)
+            pass
     os._exit(code)
 
 

@@ -34,6 +34,7 @@ _TABLE: list[tuple[str, str]] = [
     ("S005", "a statement is missing its ';'"),
     ("S006", "ladder branches are not balanced"),
     ("S007", "malformed project file (XML)"),
+    ("S008", "malformed project file (L5K)"),
     # semantic errors
     ("E101", "undefined tag"),
     ("E102", "unknown structure member"),

@@ -5,32 +5,28 @@ from __future__ import annotations
 import gc
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..diagnostics import Diagnostic
-from ..semantics.checker import Analysis, check_program
-from ..semantics.program import ProgramModel, build_program
-from ..semantics.project import build_project, controller_scope
-from ..semantics.types import TypeTable
+from ..semantics.document import (
+    PROGRAM_SUFFIXES,
+    PROJECT_SUFFIXES,
+    Loaded,
+    Source,
+    analyse_program,
+    analyse_project,
+    parse_source,
+    read_export,
+)
 from ..syntax import nodes as n
-from ..syntax.l5x import L5XProject, read_l5x
-from ..syntax.rll_parser import parse_rll
-from ..syntax.st_parser import parse_st
+from ..syntax.l5x import L5XProject
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
-SUFFIXES = (".st", ".rll")  # program files `run` and `check` read
+SUFFIXES = PROGRAM_SUFFIXES  # program files `run` and `check` read
 
 
 class InputError(Exception):
     """A file cannot be used at all (missing, directory, binary...): exit code 2."""
-
-
-@dataclass(slots=True)
-class Loaded:
-    model: ProgramModel
-    analysis: Analysis
-    diagnostics: list[Diagnostic] = field(default_factory=list)
 
 
 def _require_file(path: Path) -> None:
@@ -68,37 +64,27 @@ def read_text(path: Path) -> str:
 
 
 def is_project(path: Path) -> bool:
-    return path.suffix.lower() == ".l5x"
+    return path.suffix.lower() in PROJECT_SUFFIXES
 
 
 def parse_file(path: Path) -> tuple[list[n.Routine], list[Diagnostic]]:
     _require_file(path)  # a missing file or a directory is named as such, whatever its suffix
-    suffix = path.suffix.lower()
-    if suffix == ".st":
-        routine, diags = parse_st(read_text(path), str(path))
-        return [routine], diags
-    if suffix == ".rll":
-        routine, diags = parse_rll(read_text(path), str(path))
+    if path.suffix.lower() in SUFFIXES:
+        routine, diags = parse_source(Source(str(path), read_text(path)))
         return [routine], diags
     raise InputError(
-        f"{path}: unsupported file type '{path.suffix}' (expected {' or '.join(SUFFIXES)})"
+        f"{path}: unsupported file type '{path.suffix}' (expected .st, .rll, .L5X or .L5K)"
     )
 
 
 def read_project(path: Path) -> tuple[L5XProject | None, list[Diagnostic]]:
-    return read_l5x(read_bytes(path), str(path))
+    """An .L5X or .L5K export; both give the same project model."""
+    return read_export(str(path), read_bytes(path))
 
 
 def load_project(path: Path) -> Loaded:
-    """One .L5X export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
-    project, diags = read_project(path)
-    if project is None:
-        return Loaded(ProgramModel(path.stem, [], TypeTable()), Analysis(), diags)
-    model, mdiags = build_project(project)
-    analysis = check_program(model)
-    diags = diags + mdiags + [project.annotate(d) for d in analysis.diags]
-    diags.sort(key=lambda d: d.sort_key())
-    return Loaded(model, analysis, diags)
+    """One .L5X or .L5K export is one project (SPEC 9.8): controller, programs, tasks, AOIs."""
+    return analyse_project(str(path), read_bytes(path))
 
 
 @contextmanager
@@ -125,18 +111,19 @@ def gc_paused() -> Iterator[None]:
 def load(paths: list[Path], tags: Path | None = None) -> Loaded:
     """Parse and verify the files of one program (SPEC 2.4): routine name = file stem.
 
-    `tags` is an .L5X export whose data types and controller tags the files use (SPEC 9.16).
+    `tags` is an .L5X or .L5K export whose data types and controller tags the files use
+    (SPEC 9.16).
     """
     if not paths:
         raise InputError("no program file given")
     if any(is_project(p) for p in paths):
         if len(paths) > 1:
             raise InputError(
-                "an .L5X file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
+                "an .L5X or .L5K file is a whole project: give it alone (use --tags to share its tags with .st/.rll files)"
             )
         if tags is not None:
             raise InputError(
-                "--tags gives controller tags to .st/.rll files; an .L5X project has its own"
+                "--tags gives controller tags to .st/.rll files; an .L5X or .L5K project has its own"
             )
         with gc_paused():
             return load_project(paths[0])
@@ -145,28 +132,19 @@ def load(paths: list[Path], tags: Path | None = None) -> Loaded:
 
 
 def _load(paths: list[Path], tags: Path | None) -> Loaded:
-    routines: list[n.Routine] = []
-    diags: list[Diagnostic] = []
-    for p in paths:
-        rs, ds = parse_file(p)
-        routines.extend(rs)
-        diags.extend(ds)
-    types: TypeTable | None = None
-    shared: tuple[list[n.VarDecl], str] | None = None
+    for p in paths:  # every file is named before any is read
+        if p.suffix.lower() not in SUFFIXES:
+            parse_file(p)
+    sources = [Source(str(p), read_text(p)) for p in paths]
+    shared: tuple[L5XProject, str] | None = None
+    tag_diags: list[Diagnostic] = []
     if tags is not None:
         if not is_project(tags):
-            raise InputError(f"{tags}: --tags expects an .L5X export")
-        project, tdiags = read_project(tags)
-        diags.extend(tdiags)
+            raise InputError(f"{tags}: --tags expects an .L5X or .L5K export")
+        project, tag_diags = read_project(tags)
         if project is not None:
-            types, decls, cdiags = controller_scope(project)
-            diags.extend(cdiags)
-            shared = (decls, str(tags))
-    model, mdiags = build_program(
-        routines[0].program_name or routines[0].name, routines, types, shared
-    )
-    diags.extend(mdiags)
-    analysis = check_program(model)
-    diags.extend(analysis.diags)
-    diags.sort(key=lambda d: d.sort_key())
-    return Loaded(model, analysis, diags)
+            shared = (project, str(tags))
+    loaded = analyse_program(sources, shared)
+    if tag_diags:
+        loaded.diagnostics = sorted(tag_diags + loaded.diagnostics, key=lambda d: d.sort_key())
+    return loaded

@@ -115,6 +115,10 @@ def module_tag_note(model: ProgramModel, ident: str) -> str:
     modules: dict[str, str] = model.extra.get("modules", {})  # type: ignore[assignment]
     module = modules.get(ident.rsplit(":", 1)[0].upper())
     if module is not None:
+        project = model.extra.get("l5x")
+        if str(getattr(project, "path", "")).lower().endswith(".l5k"):
+            # L5K gives connection data as bare values, never the module-defined layout
+            return f": the layout of module '{module}' data is not in an .L5K export"
         return f": the data of module '{module}' is not in the export (no Decorated data)"
     if "l5x" in model.extra:
         return ": its module is not in the export"

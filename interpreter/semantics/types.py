@@ -221,3 +221,7 @@ class TypeTable:
 
     def names(self) -> list[str]:
         return sorted(set(self._types) | set(self._pending))
+
+    def user_types(self) -> list[StructType]:
+        """The UDTs (and add-on instruction types) declared so far, in declaration order."""
+        return [t for t in self._types.values() if isinstance(t, StructType) and not t.builtin]

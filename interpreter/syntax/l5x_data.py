@@ -210,11 +210,18 @@ class DataReader:
 
     # ------------------------------------------------------------ L5K
     def l5k(self, e: XElem, dtype: str, dims: tuple[int, ...]) -> n.Init | None:
-        try:
-            tree = _L5KParser(e.text).parse()
-        except ValueError:
-            return None  # unreadable fallback data: the tag keeps its default value
         span = self.pos.span(e.text_offset) if e.text_offset >= 0 else self.span(e)
+        return self.from_l5k_text(e.text, dtype, dims, span)
+
+    def from_l5k_text(
+        self, text: str, dtype: str, dims: tuple[int, ...], span: n.Span
+    ) -> n.Init | None:
+        """L5K data text (`[0,500,0]`, `16#ff`, `[3,'abc$00']`) as an initialiser; also the
+        tag values of .L5K exports (syntax/l5k.py). None when the text cannot be read."""
+        try:
+            tree = _L5KParser(text).parse()
+        except ValueError:
+            return None  # unreadable data: the tag keeps its default value
         return self._from_l5k(tree, dtype.upper(), dims, span)
 
     def _from_l5k(
@@ -226,6 +233,10 @@ class DataReader:
             items = [self._from_l5k(x, dtype, (), span) for x in v]
             return n.ArrayInit([i if i is not None else _zero(dtype, span) for i in items], span)
         if isinstance(v, list):
+            if len(v) == 2 and isinstance(v[0], int) and isinstance(v[1], bytes):
+                # [LEN, 'text$00...']: STRING and string-family types alike (as Decorated
+                # data of a LEN/DATA structure reads as one STRING literal)
+                return n.Literal(v[1][: max(0, v[0])], "STRING", "", span)
             if dtype in self.udts:
                 return self._udt_from_l5k(v, self.udts[dtype], span)
             layout = _PACKED.get(dtype)
@@ -239,10 +250,6 @@ class DataReader:
                     bitval = (int(v[0]) >> bit) & 1
                     members.append((bname, span, n.Literal(bitval, "DINT", str(bitval), span)))
                 return n.StructInit(members, span)
-            if dtype == "STRING" and len(v) == 2 and isinstance(v[1], bytes):
-                return n.Literal(
-                    v[1][: max(0, int(v[0]))] if isinstance(v[0], int) else v[1], "STRING", "", span
-                )
             return None  # predefined layouts other than the packed ones keep their defaults
         if isinstance(v, bytes):
             return n.Literal(v, "STRING", "", span)

@@ -356,9 +356,9 @@ def test_conveyor_sample_checks_clean() -> None:
 
 
 # ------------------------------------------------------------------ CLI input handling
-def test_unsupported_suffix_names_both_program_types(st) -> None:
+def test_unsupported_suffix_names_every_input_type(st) -> None:
     p = st.write("prog.txt", "XIC(a)OTE(b);\n")
     r = st.cli("check", str(p))
     assert r.code == 2
     assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1
-    assert "expected .st or .rll" in r.err
+    assert "expected .st, .rll, .L5X or .L5K" in r.err

@@ -1,0 +1,96 @@
+"""Document-level entry point: source text in, program model and diagnostics out.
+
+No file system here: `check`, `run` (through runtime/loader.py, which reads the files) and
+the language server (which holds the editor's unsaved text) all call these two functions,
+so an editor sees exactly the diagnostics `logixst check` prints for the same text.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..diagnostics import Diagnostic
+from ..syntax import nodes as n
+from ..syntax.l5k import read_l5k
+from ..syntax.l5x import L5XProject, read_l5x
+from ..syntax.rll_parser import parse_rll
+from ..syntax.st_parser import parse_st
+from .checker import Analysis, check_program
+from .program import ProgramModel, build_program
+from .project import build_project, controller_scope
+from .types import TypeTable
+
+PROGRAM_SUFFIXES = (".st", ".rll")  # the routine files of one program (SPEC 2.4)
+PROJECT_SUFFIXES = (".l5x", ".l5k")  # whole-project exports: XML and text form (SPEC 2.3, 2.3a)
+
+
+@dataclass(frozen=True, slots=True)
+class Source:
+    """The text of one `.st` or `.rll` routine file; `path` names it in diagnostics."""
+
+    path: str
+    text: str
+
+
+@dataclass(slots=True)
+class Loaded:
+    model: ProgramModel
+    analysis: Analysis
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    project: L5XProject | None = None  # the export, for an .L5X document
+
+
+def parse_source(source: Source) -> tuple[n.Routine, list[Diagnostic]]:
+    """One routine file; the language comes from the suffix (SPEC 9.31: never the editor's id)."""
+    if source.path.lower().endswith(".rll"):
+        return parse_rll(source.text, source.path)
+    return parse_st(source.text, source.path)
+
+
+def analyse_program(sources: list[Source], tags: tuple[L5XProject, str] | None = None) -> Loaded:
+    """Routine files forming one program: routine = file stem, the first is main (SPEC 2.4).
+
+    `tags` is an export (and its path) whose controller tags and data types the routines use
+    (`--tags`, SPEC 9.16).
+    """
+    routines: list[n.Routine] = []
+    diags: list[Diagnostic] = []
+    for s in sources:
+        routine, ds = parse_source(s)
+        routines.append(routine)
+        diags.extend(ds)
+    types: TypeTable | None = None
+    shared: tuple[list[n.VarDecl], str] | None = None
+    if tags is not None:
+        project, tags_path = tags
+        types, decls, cdiags = controller_scope(project)
+        diags.extend(cdiags)
+        shared = (decls, tags_path)
+    model, mdiags = build_program(
+        routines[0].program_name or routines[0].name, routines, types, shared
+    )
+    diags.extend(mdiags)
+    analysis = check_program(model)
+    diags.extend(analysis.diags)
+    diags.sort(key=lambda d: d.sort_key())
+    return Loaded(model, analysis, diags)
+
+
+def read_export(path: str, data: bytes) -> tuple[L5XProject | None, list[Diagnostic]]:
+    """An .L5X or .L5K export (by suffix); both give the same project model."""
+    if path.lower().endswith(".l5k"):
+        return read_l5k(data, path)
+    return read_l5x(data, path)
+
+
+def analyse_project(path: str, data: bytes) -> Loaded:
+    """One .L5X/.L5K export is one project (SPEC 9.8); positions are positions in that file."""
+    project, diags = read_export(path, data)
+    if project is None:
+        stem = path.rsplit("/", 1)[-1].rsplit(".", 1)[0]
+        return Loaded(ProgramModel(stem, [], TypeTable()), Analysis(), diags)
+    model, mdiags = build_project(project)
+    analysis = check_program(model)
+    diags = diags + mdiags + [project.annotate(d) for d in analysis.diags]
+    diags.sort(key=lambda d: d.sort_key())
+    return Loaded(model, analysis, diags, project)

@@ -1,0 +1,194 @@
+"""Completion: classify the cursor (context.py), then list candidates for that place only.
+
+Returns plain `Item`s; lsp/server.py turns them into protocol objects.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from interpreter.semantics.checker import type_matches
+from interpreter.semantics.program import ProgramModel, Tag
+from interpreter.semantics.types import ArrayType, DataType, Elementary, StructType
+from stdlib import Instruction, Operand, catalog
+
+from ..workspace import Analysed
+from .context import Context, Where, classify, offset_of
+from .resolve import find_instruction, program_at, type_of_operand, visible_tags
+
+# ST statement keywords (the statement forms of SPEC 3.1).
+ST_KEYWORDS = (
+    "IF", "THEN", "ELSIF", "ELSE", "END_IF", "CASE", "OF", "END_CASE", "FOR", "TO", "BY",
+    "DO", "END_FOR", "WHILE", "END_WHILE", "REPEAT", "UNTIL", "END_REPEAT", "EXIT",
+    "AND", "OR", "XOR", "NOT", "MOD", "TRUE", "FALSE", "VAR", "END_VAR",
+)  # fmt: skip
+ELEMENTARY_TYPES = (
+    "BOOL", "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "REAL", "LREAL",
+    "STRING",
+)  # fmt: skip
+
+
+class Kind:
+    """Completion item kinds (the LSP numbers, so the server passes them through)."""
+
+    FUNCTION = 3
+    FIELD = 5
+    VARIABLE = 6
+    CLASS = 7
+    VALUE = 12
+    KEYWORD = 14
+    SNIPPET = 15
+    ENUM_MEMBER = 20
+    STRUCT = 22
+
+
+@dataclass(frozen=True, slots=True)
+class Item:
+    label: str
+    kind: int
+    detail: str = ""
+    documentation: str = ""
+    insert_text: str | None = None
+    snippet: bool = False
+    sort: str = "5"  # rank: lower sorts first
+
+
+def complete(an: Analysed, line: int, character: int) -> list[Item]:
+    """Candidates at 0-based (line, character) of the analysed document."""
+    doc = an.document
+    text = doc.text
+    offset = offset_of(text, line, character)
+    ctx = classify(text, offset, doc.language or "st")
+    model = an.loaded.model
+    program = program_at(an, line + 1)
+    if ctx.where is Where.NONE:
+        return []
+    if ctx.where is Where.MEMBER:
+        return members(type_of_operand(model, ctx.base, program))
+    if ctx.where is Where.OPERAND:
+        return operand_items(model, ctx, program)
+    if ctx.where is Where.TYPE:
+        return type_items(model)
+    if ctx.where is Where.VALUE:
+        return tag_items(visible_tags(model, program)) + [
+            Item(k, Kind.KEYWORD, sort="6") for k in ("TRUE", "FALSE", "NOT")
+        ]
+    return statement_items(model, program, ctx.language)
+
+
+def members(t: DataType | None) -> list[Item]:
+    if isinstance(t, ArrayType):
+        return []
+    if isinstance(t, Elementary):
+        if t.is_integer:  # bit numbers of an integer tag
+            return [
+                Item(str(b), Kind.VALUE, f"bit {b} of a {t}", sort=f"{b:03d}")
+                for b in range(t.bits)
+            ]
+        return []
+    if not isinstance(t, StructType):
+        return []
+    items = []
+    for i, (name, mt) in enumerate(t.members):
+        if name.upper() in t.hidden:
+            continue
+        items.append(Item(name, Kind.FIELD, str(mt), t.docs.get(name.upper(), ""), sort=f"{i:04d}"))
+    return items
+
+
+def operand_items(model: ProgramModel, ctx: Context, program: str | None) -> list[Item]:
+    ins = find_instruction(model, ctx.instruction, ctx.language)
+    if ins is None or not ins.operands:
+        return []
+    op = ins.operands[min(ctx.index, len(ins.operands) - 1)]
+    if ctx.index >= len(ins.operands) and not ins.variadic:
+        return []
+    items: list[Item] = []
+    if op.enum is not None:
+        items.extend(enum_items(op, ctx.language == "rll"))
+        if op.format == "immediate":
+            return items
+    if op.format in ("routine", "label"):
+        return items
+    fitting = [t for t in visible_tags(model, program) if _fits(t.type, op)]
+    items.extend(tag_items(fitting, sort="3" if op.enum is None else "7"))
+    return items
+
+
+def enum_items(op: Operand, ladder: bool) -> list[Item]:
+    """The operand's own enumeration values: ST label in lower case, ladder its display text."""
+    enum = catalog().enum(op.enum)  # type: ignore[arg-type]
+    return [
+        Item(
+            v.text if ladder else v.label,
+            Kind.ENUM_MEMBER,
+            f"{v.value}: {v.doc}" if v.doc else str(v.value),
+            f"{op.name} = {v.value} ({v.text})",
+            sort=f"1{i:03d}",
+        )
+        for i, v in enumerate(enum.values)
+    ]
+
+
+def _fits(t: DataType, op: Operand) -> bool:
+    if type_matches(t, op.types):
+        return True
+    # An array operand (CAM_PROFILE[], CAM[] ...) names the array; the catalog gives its element.
+    return (
+        isinstance(t, ArrayType)
+        and op.format in ("array", "memory")
+        and type_matches(t.elem, op.types)
+    )
+
+
+def tag_items(tags: list[Tag], sort: str = "4") -> list[Item]:
+    return [Item(t.name, Kind.VARIABLE, str(t.type), sort=sort) for t in tags]
+
+
+def type_items(model: ProgramModel) -> list[Item]:
+    items = [Item(name, Kind.KEYWORD, "elementary type", sort="1") for name in ELEMENTARY_TYPES]
+    items += [
+        Item(td.name, Kind.STRUCT, "predefined structure", td.doc, sort="3")
+        for name, td in sorted(catalog().types.items())
+        if name == td.name
+    ]
+    items += [
+        Item(t.name, Kind.STRUCT, "user-defined type", sort="2") for t in model.types.user_types()
+    ]
+    return items
+
+
+def snippet(ins: Instruction) -> str:
+    ops = ", ".join(f"${{{i}:{op.name}}}" for i, op in enumerate(ins.operands, start=1))
+    return f"{ins.name}({ops})"
+
+
+def instruction_items(model: ProgramModel, language: str) -> list[Item]:
+    seen: set[str] = set()
+    items = []
+    for ins in catalog().instructions:
+        if language not in ins.languages or ins.name in seen:
+            continue
+        seen.add(ins.name)
+        if ins.kind == "function" and language == "st":
+            items.append(
+                Item(ins.name, Kind.FUNCTION, "function", ins.doc, snippet(ins), True, "6")
+            )
+            continue
+        items.append(Item(ins.name, Kind.SNIPPET, "instruction", ins.doc, snippet(ins), True, "5"))
+    for aoi in model.aois.values():
+        defined: Instruction | None = getattr(aoi, "instruction", None)
+        if defined is not None:
+            ins = defined
+            items.append(
+                Item(ins.name, Kind.CLASS, "add-on instruction", ins.doc, snippet(ins), True, "5")
+            )
+    return items
+
+
+def statement_items(model: ProgramModel, program: str | None, language: str) -> list[Item]:
+    items = instruction_items(model, language)
+    items += tag_items(visible_tags(model, program))
+    if language == "st":
+        items += [Item(k, Kind.KEYWORD, sort="2") for k in ST_KEYWORDS]
+    return items

@@ -1,0 +1,96 @@
+"""Hover: an instruction's summary and operand table, a tag's type and declaration, an
+enumeration value's meaning, a diagnostic code's explanation (markdown)."""
+
+from __future__ import annotations
+
+import re
+
+from interpreter.diagnostics import REGISTRY
+from interpreter.semantics.program import Tag
+from stdlib import Instruction, catalog
+
+from ..workspace import Analysed
+from .context import Where, classify, offset_of
+from .resolve import find_instruction, find_tag, program_at, word_at
+
+_CODE = re.compile(r"^[SEWU]\d{3}$")
+
+
+def hover(an: Analysed, line: int, character: int) -> str | None:
+    text = an.document.text
+    offset = offset_of(text, line, character)
+    start, end = word_at(text, offset)
+    word = text[start:end]
+    if not word:
+        return None
+    model = an.loaded.model
+    program = program_at(an, line + 1)
+    if _CODE.match(word) and word in REGISTRY:
+        code = REGISTRY[word]
+        return f"**{code.code}** ({code.severity.value}): {code.title}"
+    if text[end : end + 1] == "(" or text[end:].lstrip()[:1] == "(":
+        ins = find_instruction(model, word, _language(an))
+        if ins is not None:
+            return instruction_markdown(ins)
+    ctx = classify(text, end, an.document.language or "st")
+    if ctx.where is Where.OPERAND:
+        ins = find_instruction(model, ctx.instruction, ctx.language)
+        if ins is not None and ins.operands:
+            op = ins.operands[min(ctx.index, len(ins.operands) - 1)]
+            if op.enum is not None:
+                value = catalog().enum(op.enum).lookup(word)
+                if value is not None:
+                    return f"**{value.text}** = {value.value}: {value.doc}\n\n{ins.name} operand {op.name}"
+    if text[start - 1 : start] != ".":
+        tag = find_tag(model, word, program)
+        if tag is not None:
+            return tag_markdown(tag)
+    t = catalog().type(word)
+    if t is not None:
+        return f"**{t.name}** (predefined structure)\n\n{t.doc}"
+    return None
+
+
+def _language(an: Analysed) -> str:
+    lang = an.document.language
+    return "rll" if lang == "rll" else "st"
+
+
+def instruction_markdown(ins: Instruction) -> str:
+    rows = ["| # | operand | type | format | meaning |", "|---|---|---|---|---|"]
+    for i, op in enumerate(ins.operands):
+        meaning = op.doc
+        if op.enum is not None:
+            values = ", ".join(f"{v.value} {v.text}" for v in catalog().enum(op.enum).values)
+            meaning = f"{meaning} ({values})"
+        rows.append(f"| {i} | {op.name} | {' '.join(op.types)} | {op.format} | {meaning} |")
+    head = f"**{ins.name}**({', '.join(op.name for op in ins.operands)})"
+    note = f"\n\n_Not simulated: {ins.unsupported}_" if ins.unsupported else ""
+    return f"{head}\n\n{ins.doc}{note}\n\n" + "\n".join(rows)
+
+
+def tag_markdown(tag: Tag) -> str:
+    scope = f"program {tag.program}" if tag.program else "controller"
+    lines = [
+        f"**{tag.name}** : `{tag.type}` ({scope} tag)",
+        f"declared at {tag.path}:{tag.span.line}",
+    ]
+    if tag.alias_of is not None:
+        lines.append(f"alias of {tag.alias_of.name}")
+    init = _initial(tag)
+    if init:
+        lines.append(f"initial value: `{init}`")
+    return "\n\n".join(lines)
+
+
+def _initial(tag: Tag) -> str:
+    from interpreter.syntax import nodes as n
+
+    init = tag.init
+    if isinstance(init, n.Literal):
+        return init.text
+    if isinstance(init, n.Unary) and isinstance(init.operand, n.Literal):
+        return f"-{init.operand.text}"
+    if init is not None:
+        return "(structure or array initialiser)"
+    return ""

@@ -1,0 +1,404 @@
+"""`logixst lsp`: the protocol glue between pygls and the protocol-free features.
+
+Every handler asks the Workspace for the document's analysis and turns the features' plain
+data into lsprotocol objects. A failure inside a feature never stops the server: it is
+logged with window/logMessage and the request gets an empty answer.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import traceback
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+from lsprotocol import types as t
+from pygls.lsp.server import LanguageServer
+
+from interpreter.syntax import nodes as n
+
+from .features import completion as comp
+from .features.actions import actions
+from .features.diagnostics import to_editor
+from .features.hover import hover
+from .features.navigation import Location, RenameRefused, definition, references, rename
+from .features.signature import signature
+from .features.symbols import Symbol, document_symbols, folding_ranges
+from .features.tokens import LEGEND, encode, semantic_tokens
+from .workspace import Workspace, language_of, uri_to_path
+
+DEBOUNCE_S = 0.15  # diagnostics after typing pauses this long
+VERSION = "0.1.0"
+
+R = TypeVar("R")
+
+
+class LogixServer(LanguageServer):
+    def __init__(self) -> None:
+        super().__init__(
+            "logixst", VERSION, text_document_sync_kind=t.TextDocumentSyncKind.Incremental
+        )
+        self.docs = Workspace()
+        self.pending: dict[str, asyncio.TimerHandle] = {}
+
+    def log(self, message: str, kind: t.MessageType = t.MessageType.Log) -> None:
+        try:
+            self.window_log_message(t.LogMessageParams(kind, message))
+        except Exception:  # noqa: BLE001 - logging must never fail a request
+            pass
+
+    def sync(self, uri: str) -> bool:
+        """Copy pygls' current text of `uri` into our workspace; False when it is not open."""
+        try:
+            doc = self.workspace.get_text_document(uri)
+            text = doc.source
+        except Exception:  # noqa: BLE001
+            return False
+        if uri in self.docs.documents:
+            self.docs.change(uri, text, doc.version or 0)
+        else:
+            self.docs.open(uri, text, doc.version or 0)
+        return True
+
+    def publish(self, uri: str) -> None:
+        self.pending.pop(uri, None)
+        an = guarded(self, None, lambda: self.docs.analyse(uri))
+        if an is None:
+            return
+        diags = []
+        for d in an.diagnostics:
+            e = to_editor(d)
+            diags.append(
+                t.Diagnostic(
+                    range=t.Range(
+                        t.Position(e.line, e.character), t.Position(e.end_line, e.end_character)
+                    ),
+                    message=e.message,
+                    severity=t.DiagnosticSeverity(e.severity),
+                    code=e.code,
+                    code_description=t.CodeDescription(href=e.href),
+                    source="logixst",
+                )
+            )
+        self.text_document_publish_diagnostics(
+            t.PublishDiagnosticsParams(uri=uri, diagnostics=diags, version=an.document.version)
+        )
+
+    def schedule(self, uri: str) -> None:
+        old = self.pending.pop(uri, None)
+        if old is not None:
+            old.cancel()
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            self.publish(uri)
+            return
+        self.pending[uri] = loop.call_later(DEBOUNCE_S, self.publish, uri)
+
+
+def guarded(server: LogixServer, empty: R, fn: Callable[[], R]) -> R:
+    """Run a feature; on any failure log it and answer `empty` (the server keeps going)."""
+    try:
+        return fn()
+    except Exception:  # noqa: BLE001 - a feature bug must not take the server down
+        server.log(f"logixst: internal error\n{traceback.format_exc()}", t.MessageType.Error)
+        return empty
+
+
+server = LogixServer()
+
+
+def _analysed(uri: str):  # type: ignore[no-untyped-def]
+    if uri not in server.docs.documents and not server.sync(uri):
+        return None
+    return server.docs.analyse(uri)
+
+
+def feature(name: str, options: Any = None, empty: Any = None):  # type: ignore[no-untyped-def]
+    """Register `fn(params)` for `name`, guarded so that it answers `empty` on failure."""
+
+    def wrap(fn):  # type: ignore[no-untyped-def]
+        def handler(ls: LogixServer, params: Any) -> Any:
+            return guarded(ls, empty, lambda: fn(params))
+
+        handler.__name__ = fn.__name__
+
+        server.feature(name, options)(handler) if options is not None else server.feature(name)(
+            handler
+        )
+        return fn
+
+    return wrap
+
+
+def _configure(settings: Any) -> None:
+    if not isinstance(settings, dict):
+        return
+    section = settings.get("logixst", settings)
+    if isinstance(section, dict) and "tags" in section:
+        tags = section["tags"]
+        server.docs.tags_path = str(tags) if tags else None
+        for uri in list(server.docs.documents):
+            server.schedule(uri)
+
+
+@server.feature(t.INITIALIZE)
+def initialize(ls: LogixServer, params: t.InitializeParams) -> None:
+    guarded(ls, None, lambda: _configure(params.initialization_options))
+
+
+@server.feature(t.WORKSPACE_DID_CHANGE_CONFIGURATION)
+def did_change_configuration(ls: LogixServer, params: t.DidChangeConfigurationParams) -> None:
+    guarded(ls, None, lambda: _configure(params.settings))
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_OPEN)
+def did_open(ls: LogixServer, params: t.DidOpenTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    if language_of(uri_to_path(uri)) is None:
+        return
+    ls.docs.open(uri, params.text_document.text, params.text_document.version)
+    ls.publish(uri)
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_CHANGE)
+def did_change(ls: LogixServer, params: t.DidChangeTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    if uri in ls.docs.documents and ls.sync(uri):
+        ls.schedule(uri)
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_SAVE)
+def did_save(ls: LogixServer, params: t.DidSaveTextDocumentParams) -> None:
+    for uri in list(ls.docs.documents):  # a saved sibling changes what the others see
+        ls.schedule(uri)
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_CLOSE)
+def did_close(ls: LogixServer, params: t.DidCloseTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    handle = ls.pending.pop(uri, None)
+    if handle is not None:
+        handle.cancel()
+    ls.docs.close(uri)
+    ls.text_document_publish_diagnostics(t.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
+
+
+def _range(span: n.Span) -> t.Range:
+    return t.Range(
+        t.Position(max(span.line - 1, 0), max(span.col - 1, 0)),
+        t.Position(max(span.end_line - 1, 0), max(span.end_col - 1, 0)),
+    )
+
+
+def _location(loc: Location) -> t.Location:
+    from pathlib import Path
+
+    return t.Location(uri=Path(loc.path).resolve().as_uri(), range=_range(loc.span))
+
+
+@feature(
+    t.TEXT_DOCUMENT_COMPLETION,
+    t.CompletionOptions(trigger_characters=[".", "(", ",", " "]),
+    empty=[],
+)
+def completion(params: t.CompletionParams) -> t.CompletionList | list[Any]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    items = comp.complete(an, params.position.line, params.position.character)
+    return t.CompletionList(
+        is_incomplete=False,
+        items=[
+            t.CompletionItem(
+                label=i.label,
+                kind=t.CompletionItemKind(i.kind),
+                detail=i.detail or None,
+                documentation=t.MarkupContent(t.MarkupKind.Markdown, i.documentation)
+                if i.documentation
+                else None,
+                insert_text=i.insert_text,
+                insert_text_format=t.InsertTextFormat.Snippet if i.snippet else None,
+                sort_text=f"{i.sort}{i.label.lower()}",
+            )
+            for i in items
+        ],
+    )
+
+
+@feature(t.TEXT_DOCUMENT_HOVER)
+def hover_(params: t.HoverParams) -> t.Hover | None:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return None
+    md = hover(an, params.position.line, params.position.character)
+    return t.Hover(t.MarkupContent(t.MarkupKind.Markdown, md)) if md else None
+
+
+@feature(
+    t.TEXT_DOCUMENT_SIGNATURE_HELP,
+    t.SignatureHelpOptions(trigger_characters=["(", ","], retrigger_characters=[","]),
+)
+def signature_help(params: t.SignatureHelpParams) -> t.SignatureHelp | None:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return None
+    sig = signature(an, params.position.line, params.position.character)
+    if sig is None:
+        return None
+    info = t.SignatureInformation(
+        label=sig.label,
+        documentation=t.MarkupContent(t.MarkupKind.Markdown, sig.documentation),
+        parameters=[
+            t.ParameterInformation(label=name, documentation=doc) for name, doc in sig.parameters
+        ],
+    )
+    return t.SignatureHelp(signatures=[info], active_signature=0, active_parameter=sig.active)
+
+
+@feature(t.TEXT_DOCUMENT_DEFINITION, empty=[])
+def goto_definition(params: t.DefinitionParams) -> list[t.Location]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    return [_location(x) for x in definition(an, params.position.line, params.position.character)]
+
+
+@feature(t.TEXT_DOCUMENT_REFERENCES, empty=[])
+def find_references(params: t.ReferenceParams) -> list[t.Location]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    found = references(
+        an, params.position.line, params.position.character, params.context.include_declaration
+    )
+    return [_location(x) for x in found]
+
+
+@server.feature(t.TEXT_DOCUMENT_RENAME)
+def rename_(ls: LogixServer, params: t.RenameParams) -> t.WorkspaceEdit | None:
+    from pygls.exceptions import JsonRpcInvalidRequest
+
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return None
+    editable = {d.path for d in ls.docs.documents.values() if d.language in ("st", "rll")}
+    try:
+        places = rename(
+            an, params.position.line, params.position.character, params.new_name, editable
+        )
+    except RenameRefused as exc:
+        raise JsonRpcInvalidRequest(str(exc)) from None
+    except Exception:  # noqa: BLE001
+        ls.log(f"logixst: internal error\n{traceback.format_exc()}", t.MessageType.Error)
+        return None
+    changes: dict[str, list[t.TextEdit]] = {}
+    for loc in places:
+        changes.setdefault(_location(loc).uri, []).append(
+            t.TextEdit(_range(loc.span), params.new_name)
+        )
+    return t.WorkspaceEdit(changes=changes)
+
+
+def _symbol(s: Symbol) -> t.DocumentSymbol:
+    r = _range(s.span)
+    return t.DocumentSymbol(
+        name=s.name,
+        kind=t.SymbolKind(s.kind),
+        range=r,
+        selection_range=r,
+        detail=s.detail or None,
+        children=[_symbol(c) for c in s.children],
+    )
+
+
+@feature(t.TEXT_DOCUMENT_DOCUMENT_SYMBOL, empty=[])
+def doc_symbols(params: t.DocumentSymbolParams) -> list[t.DocumentSymbol]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    return [_symbol(s) for s in document_symbols(an)]
+
+
+@feature(t.WORKSPACE_SYMBOL, empty=[])
+def workspace_symbols(params: t.WorkspaceSymbolParams) -> list[t.WorkspaceSymbol]:
+    from pathlib import Path
+
+    query = params.query.lower()
+    out: list[t.WorkspaceSymbol] = []
+    for uri in list(server.docs.documents):
+        an = server.docs.analyse(uri)
+        if an is None:
+            continue
+        stack = list(document_symbols(an))
+        while stack:
+            s = stack.pop()
+            stack.extend(s.children)
+            if query in s.name.lower():
+                loc = t.Location(
+                    uri=Path(an.document.path).resolve().as_uri(), range=_range(s.span)
+                )
+                out.append(t.WorkspaceSymbol(name=s.name, kind=t.SymbolKind(s.kind), location=loc))
+    return out
+
+
+@feature(t.TEXT_DOCUMENT_FOLDING_RANGE, empty=[])
+def folding(params: t.FoldingRangeParams) -> list[t.FoldingRange]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    return [
+        t.FoldingRange(
+            start_line=a - 1,
+            end_line=b - 1,
+            kind=t.FoldingRangeKind.Comment if kind == "comment" else t.FoldingRangeKind.Region,
+        )
+        for a, b, kind in folding_ranges(an)
+    ]
+
+
+@feature(
+    t.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
+    t.SemanticTokensLegend(token_types=list(LEGEND), token_modifiers=[]),
+)
+def tokens_full(params: t.SemanticTokensParams) -> t.SemanticTokens:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return t.SemanticTokens(data=[])
+    return t.SemanticTokens(data=encode(semantic_tokens(an)))
+
+
+@feature(
+    t.TEXT_DOCUMENT_CODE_ACTION,
+    t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix]),
+    empty=[],
+)
+def code_actions(params: t.CodeActionParams) -> list[t.CodeAction]:
+    an = _analysed(params.text_document.uri)
+    if an is None:
+        return []
+    uri = params.text_document.uri
+    out = []
+    for d in params.context.diagnostics:
+        r = d.range
+        span = n.Span(r.start.line + 1, r.start.character + 1, r.end.line + 1, r.end.character + 1)
+        for a in actions(an, str(d.code or ""), d.message, span):
+            edits = [t.TextEdit(_range(e.span), e.text) for e in a.edits]
+            out.append(
+                t.CodeAction(
+                    title=a.title,
+                    kind=t.CodeActionKind.QuickFix,
+                    diagnostics=[d],
+                    edit=t.WorkspaceEdit(changes={uri: edits}),
+                )
+            )
+    return out
+
+
+def run(tcp: str | None = None) -> None:
+    """Serve on stdio, or on TCP `HOST:PORT`."""
+    if tcp:
+        host, _, port = tcp.rpartition(":")
+        server.start_tcp(host or "127.0.0.1", int(port))
+    else:
+        server.start_io()

@@ -1,0 +1,171 @@
+"""The documents the editor has open, and their analysis (protocol-free).
+
+A `.st`/`.rll` document is analysed as `check DIR` sees a program: together with the
+`.st`/`.rll` files beside it (the editor's unsaved text wins over the file on disk), so JSR
+targets and shared tags resolve. An `.L5X` document is one project. The language comes from
+the file extension, never from the editor's languageId (SPEC 9.31).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from urllib.parse import unquote, urlparse
+
+from interpreter.diagnostics import Diagnostic
+from interpreter.semantics.document import (
+    PROGRAM_SUFFIXES,
+    PROJECT_SUFFIXES,
+    Loaded,
+    Source,
+    analyse_program,
+    analyse_project,
+    read_export,
+)
+from interpreter.syntax.l5x import L5XProject
+
+MAX_DOCUMENT_CHARS = 64 * 1024 * 1024  # as the CLI's file size limit
+
+
+def uri_to_path(uri: str) -> str:
+    parsed = urlparse(uri)
+    if parsed.scheme == "file":
+        return unquote(parsed.path)
+    return uri
+
+
+_HEADER_END = re.compile(r"\bEND_(?:VAR|TYPE)\b", re.I)
+
+
+def _header_only(text: str) -> str:
+    """The text up to the last END_VAR/END_TYPE: the declarations without the code."""
+    last = None
+    for m in _HEADER_END.finditer(text):
+        last = m
+    return text[: last.end()] + "\n" if last is not None else ""
+
+
+def language_of(path: str) -> str | None:
+    """'st', 'rll' or 'l5x' (an .L5X or .L5K export) by extension; None for other documents."""
+    suffix = Path(path).suffix.lower()
+    if suffix in PROGRAM_SUFFIXES:
+        return suffix[1:]
+    if suffix in PROJECT_SUFFIXES:
+        return "l5x"
+    return None
+
+
+@dataclass(slots=True)
+class Document:
+    uri: str
+    path: str
+    text: str
+    version: int = 0
+
+    @property
+    def language(self) -> str | None:
+        return language_of(self.path)
+
+
+@dataclass(slots=True)
+class Analysed:
+    """One document's view of its program: the shared analysis and this file's diagnostics.
+
+    `loaded` is the analysis of the text as it is; while the text does not parse, its
+    declarations are taken from the declaration header alone (`_header_only`), so that
+    completion and hover still know the tags in half-typed code.
+    """
+
+    document: Document
+    loaded: Loaded
+    diagnostics: list[Diagnostic]
+
+
+@dataclass(slots=True)
+class Workspace:
+    documents: dict[str, Document] = field(default_factory=dict)
+    tags_path: str | None = None  # the `logixst.tags` setting: plays the role of --tags
+    _cache: dict[str, tuple[tuple[object, ...], Analysed]] = field(default_factory=dict)
+
+    def open(self, uri: str, text: str, version: int = 0) -> Document:
+        doc = Document(uri, uri_to_path(uri), text, version)
+        self.documents[uri] = doc
+        return doc
+
+    def change(self, uri: str, text: str, version: int) -> Document | None:
+        doc = self.documents.get(uri)
+        if doc is not None:
+            doc.text, doc.version = text, version
+        return doc
+
+    def close(self, uri: str) -> None:
+        self.documents.pop(uri, None)
+        self._cache.pop(uri, None)
+
+    def get(self, uri: str) -> Document | None:
+        return self.documents.get(uri)
+
+    def analyse(self, uri: str) -> Analysed | None:
+        """The analysis of an open document (cached while nothing it reads has changed)."""
+        doc = self.documents.get(uri)
+        if doc is None or doc.language is None:
+            return None
+        if len(doc.text) > MAX_DOCUMENT_CHARS:
+            return None
+        sources = self._program_sources(doc) if doc.language != "l5x" else []
+        key: tuple[object, ...] = (doc.text, self.tags_path, tuple(sources))
+        hit = self._cache.get(uri)
+        if hit is not None and hit[0] == key:
+            return hit[1]
+        if doc.language == "l5x":
+            loaded = analyse_project(doc.path, doc.text.encode("utf-8"))
+        else:
+            loaded = analyse_program(sources, self._tags())
+        mine = [d for d in loaded.diagnostics if d.path == doc.path]
+        if (
+            doc.language != "l5x"
+            and not loaded.model.tags
+            and any(d.code.startswith("S") for d in mine)
+        ):
+            header = _header_only(doc.text)
+            if header:
+                others = [x for x in sources if x.path != doc.path]
+                loaded = analyse_program([Source(doc.path, header), *others], self._tags())
+                loaded.diagnostics = [d for d in loaded.diagnostics if d.path != doc.path]
+        result = Analysed(doc, loaded, mine)
+        self._cache[uri] = (key, result)
+        return result
+
+    def _program_sources(self, doc: Document) -> list[Source]:
+        """This document and its sibling routine files, in `check DIR` order (sorted)."""
+        open_text = {d.path: d.text for d in self.documents.values()}
+        here = Path(doc.path)
+        paths = {doc.path}
+        if here.parent.is_dir():
+            try:
+                for p in here.parent.iterdir():
+                    if p.suffix.lower() in PROGRAM_SUFFIXES and p.is_file():
+                        paths.add(str(p))
+            except OSError:
+                pass
+        sources = []
+        for name in sorted(paths):
+            text = open_text.get(name)
+            if text is None:
+                try:
+                    text = Path(name).read_text(encoding="utf-8", errors="replace")
+                except OSError:
+                    continue
+            sources.append(Source(name, text))
+        return sources
+
+    def _tags(self) -> tuple[L5XProject, str] | None:
+        if not self.tags_path:
+            return None
+        try:
+            data = Path(self.tags_path).read_bytes()
+        except OSError:
+            return None
+        project, _ = read_export(self.tags_path, data)
+        return None if project is None else (project, self.tags_path)

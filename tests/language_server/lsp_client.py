@@ -1,0 +1,32 @@
+"""Helpers for the language server tests: open a document, wait for its diagnostics."""
+
+from __future__ import annotations
+
+import asyncio
+from pathlib import Path
+
+from lsprotocol import types as t
+from pytest_lsp import LanguageClient
+
+
+async def open_doc(client: LanguageClient, path: Path, text: str) -> str:
+    """Open `text` as the document at `path`; wait for its first diagnostics."""
+    uri = path.resolve().as_uri()
+    client.diagnostics.pop(uri, None)
+    client.text_document_did_open(
+        t.DidOpenTextDocumentParams(t.TextDocumentItem(uri, "plaintext", 1, text))
+    )
+    await wait_diagnostics(client, uri)
+    return uri
+
+
+async def wait_diagnostics(
+    client: LanguageClient, uri: str, timeout: float = 10.0
+) -> list[t.Diagnostic]:
+    loop = asyncio.get_running_loop()
+    end = loop.time() + timeout
+    while uri not in client.diagnostics:
+        if loop.time() > end:
+            raise AssertionError(f"no diagnostics published for {uri}")
+        await asyncio.sleep(0.02)
+    return client.diagnostics[uri]
