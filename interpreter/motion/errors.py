@@ -11,6 +11,7 @@ class MotionError(IntEnum):
 
     OK = 0
     SERVO_OFF_STATE = 5
+    SHUTDOWN_STATE = 7
     AXIS_NOT_CONFIGURED = 11
     PARAMETER_OUT_OF_RANGE = 13
     AXIS_MODE_NOT_ROTARY = 17
