@@ -132,7 +132,7 @@ class SystemAttribute:
     access: frozenset[str]  # "get" and/or "set": what the controller allows
     simulated: frozenset[str]  # the part of access logixst executes
     doc: str = ""
-    member: bool = False  # the value is the member of the same name in the instance tag
+    member: str = ""  # the value lives in this member of the instance tag ("" if not a tag)
 
 
 @dataclass(frozen=True, slots=True)
@@ -300,28 +300,34 @@ def _load_system_objects(cat: Catalog) -> None:
         if raw.get("instance") not in SYSTEM_INSTANCES:
             raise CatalogError(f"system_objects.toml: {name}: bad instance kind")
         attrs: list[SystemAttribute] = []
+        members_of = str(raw.get("members_of", "")).upper()
+        td = cat.types.get(members_of) if members_of else None
+        if members_of and td is None:
+            raise CatalogError(f"system_objects.toml: {name}: unknown type {members_of}")
+        member_names = {m.name.upper() for m in td.members} if td is not None else set()
         for a in raw.get("attributes", []):
             where = f"{name}.{a['name']}"
+            member = str(a.get("member", ""))
+            if not member and a["name"].upper() in member_names:
+                continue  # the tag has this member now: the member entry below describes it
+            if member and member.upper() not in member_names:
+                raise CatalogError(f"system_objects.toml: {where}: no member {member}")
             access = _access(str(a["access"]), where)
             simulated = _access(str(a.get("simulated", "")), where)
             if not simulated <= access:
                 raise CatalogError(f"system_objects.toml: {where}: simulates what it cannot access")
             attrs.append(
                 SystemAttribute(
-                    a["name"], str(a["type"]).upper(), access, simulated, a.get("doc", "")
+                    a["name"], str(a["type"]).upper(), access, simulated, a.get("doc", ""), member
                 )
             )
-        members_of = raw.get("members_of")
-        if members_of:
-            td = cat.types.get(str(members_of).upper())
-            if td is None:
-                raise CatalogError(f"system_objects.toml: {name}: unknown type {members_of}")
-            for m in td.members:
-                base, _, dims = m.type.partition("[")
-                if m.hidden or base not in _ELEMENTARY:
-                    continue  # internal data, strings and axis references are not attributes
-                access = frozenset({"get"} if m.readonly or dims else {"get", "set"})
-                attrs.append(SystemAttribute(m.name, m.type, access, access, m.doc, member=True))
+        listed = {a.name.upper() for a in attrs}
+        for m in td.members if td is not None else ():
+            base, _, dims = m.type.partition("[")
+            if m.hidden or base not in _ELEMENTARY or m.name.upper() in listed:
+                continue  # internal data, strings and axis references are not attributes
+            access = frozenset({"get"} if m.readonly or dims else {"get", "set"})
+            attrs.append(SystemAttribute(m.name, m.type, access, access, m.doc, m.name))
         cls = SystemClass(
             name,
             str(raw["instance"]),

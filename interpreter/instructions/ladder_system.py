@@ -222,7 +222,7 @@ def gsv(ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, des
     if a is None or "get" not in a.simulated:
         return  # U303: not simulated, the destination keeps its value
     if a.member:
-        where = _member(ctx, key[0], instance, key[1])
+        where = _member(ctx, key[0], instance, a.member.upper())
         if where is not None:
             value = where[0][where[1]]
             _put(dest, a.type, list(value) if isinstance(value, list) else value)
@@ -241,10 +241,12 @@ def ssv(
     if a is None or "set" not in a.simulated:
         return
     if a.member:
-        where = _member(ctx, key[0], instance, key[1])
+        where = _member(ctx, key[0], instance, a.member.upper())
         if where is not None and isinstance(a_type := TypeTable().get(a.type), Elementary):
             storage, at = where
-            storage[at] = convert(_get(source, a.type), a_type)
+            elements, start, _, avail = _block(source, "Source")
+            if avail > 0:  # the element as it is (a REAL stays a REAL)
+                storage[at] = convert(elements[start], a_type)
             rt = ctx.motion
             axis = rt.axis(storage) if isinstance(rt, MotionRuntime) else None
             if axis is not None:  # a new limit applies to the next motion instruction

@@ -17,7 +17,7 @@ from ..motion import MotionError
 from ..runtime.motion import Group, Tracked
 from ..runtime.motion_layout import set_bits
 from ..vm.context import ExecContext
-from ..vm.values import f32
+from ..vm.values import f32, wrap
 from .motion_common import begin, clear_on_prescan, configured, fail, real, runtime, whole
 from .motion_state import set_tag_bits
 from .registry import implements, prescan
@@ -53,6 +53,8 @@ def maw(
     def on_end(g: Group, completed: bool) -> None:
         if completed:  # a replaced or disarmed watch leaves the bits to its successor
             set_tag_bits(ax, WatchEventArmedStatus=0, WatchEventStatus=1)
+            # WatchTime: the CST (µs, low 32 bits) of the update that saw the crossing
+            ax.value[ax.layout.index["WATCHTIME"]] = wrap(round(g.core.time * 1e6), 32, True)
 
     rt.track(ax.group, r.handle, Tracked("MAW", ctl, None, on_end=on_end))
     set_bits(ctl, DN=1, IP=1)
