@@ -134,6 +134,7 @@ class MotionGroup:
         self.servo_on = np.zeros(0, dtype=bool)
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
         self.watch = WatchSet()  # MAW watch-position events
+        self.registration: dict[tuple[int, int], int] = {}  # (axis, input) -> MAR handle
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
         self._alpha = np.zeros(0)
@@ -268,6 +269,24 @@ class MotionGroup:
         old = self.watch.disarm(axis)
         if old is not None:
             self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+        return StartResult(handle=self._handle())
+
+    # -- registration ---------------------------------------------------------------------
+    def arm_registration(self, axis: int, input_number: int) -> StartResult:
+        """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
+        an armed registration waits (IP) until MDR or a later MAR on the same input."""
+        h = self._handle()
+        old = self.registration.get((axis, input_number))
+        self.registration[(axis, input_number)] = h
+        if old is not None:
+            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+        return StartResult(handle=h)
+
+    def disarm_registration(self, axis: int, input_number: int) -> StartResult:
+        """MDR: disarm the input; the arming MAR ends without completing."""
+        old = self.registration.pop((axis, input_number), None)
+        if old is not None:
+            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
         return StartResult(handle=self._handle())
 
     def _kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:

@@ -209,3 +209,33 @@ IF k = 3 THEN MCSV(c4, none2, 1.0, s2, d12, d22); END_IF;"""
     # a profile never calculated: error 32, outputs untouched
     assert tr.at(0.003, "c4.ER") == 1 and tr.at(0.003, "c4.ERR") == 32
     assert tr.at(0.003, "s2") == 0
+
+
+def test_mar_arms_and_waits_for_an_input_nothing_drives_and_mdr_disarms(mp) -> None:
+    # Studio's 7-operand form (input 2) and the older form without InputNumber (input 1)
+    body = """IF k = 0 THEN MAR(X, c1, positive_edge, disabled, 0.0, 0.0, 2); MAR(X, c2, negative_edge, enabled, 1.0, 5.0); END_IF;
+IF k = 10 THEN MDR(X, c3, 2); END_IF;
+IF k = 12 THEN MAR(X, c4, positive_edge, enabled, 5.0, 1.0, 1); MDR(X, c5, 3); END_IF;"""
+    watch = [
+        "c1.DN", "c1.IP", "c1.PC", "c2.IP", "c3.DN", "X.RegEvent1ArmedStatus",
+        "X.RegEvent2ArmedStatus", "X.RegEvent2Status", "X.AxisEvent", "c4.ER", "c4.ERR",
+        "c4.EXERR", "c5.ER", "c5.EXERR",
+    ]  # fmt: skip
+    tr = mp.trace(prog("", body), watch, scans=20)
+    assert tr.at(0.0, "c1.DN") == 1 and tr.at(0.0, "c1.IP") == 1
+    # RegEvent1ArmedStatus is bit 2 of AxisEvent, RegEvent2ArmedStatus bit 4
+    assert tr.at(0.0, "X.AxisEvent") == 4 + 16
+    assert tr.at(0.0, "X.RegEvent1ArmedStatus") == 1 and tr.at(0.0, "X.RegEvent2ArmedStatus") == 1
+    # no edge reaches the simulated inputs: still armed, no PC
+    assert tr.at(0.009, "c1.IP") == 1 and tr.at(0.009, "c2.IP") == 1
+    assert all(v == 0 for v in tr.col("c1.PC"))
+    # MDR on input 2: done at once, bits cleared at once, the MAR leaves IP at the next update
+    assert tr.at(0.01, "c3.DN") == 1
+    assert tr.at(0.01, "X.RegEvent2ArmedStatus") == 0 and tr.at(0.01, "X.RegEvent2Status") == 0
+    assert tr.at(0.01 + CUP, "c1.IP") == 0
+    assert tr.at(0.01 + CUP, "c2.IP") == 1  # input 1 is still armed
+    # a window whose maximum is not above its minimum: ERR 13 on MaximumPosition (index 5)
+    assert tr.at(0.012, "c4.ER") == 1 and tr.at(0.012, "c4.ERR") == 13
+    assert tr.at(0.012, "c4.EXERR") == 5
+    # there are only registration inputs 1 and 2 (MDR InputNumber is operand 2)
+    assert tr.at(0.012, "c5.ER") == 1 and tr.at(0.012, "c5.EXERR") == 2
