@@ -237,6 +237,8 @@ def catalog() -> Catalog:
             values = tuple(
                 EnumValue(str(v["text"]), int(v["value"]), v.get("doc", "")) for v in e["values"]
             )
+            if e["name"] in cat.enums:  # facts once: a second definition would silently win
+                raise CatalogError(f"{path.name}: enumeration {e['name']} defined twice")
             cat.enums[e["name"]] = Enumeration(e["name"], values, bool(e.get("counts", False)))
         for raw in data.get("instruction", []):
             ins = _instruction(raw, path.stem, path.name)
@@ -342,5 +344,8 @@ def _load_system_objects(cat: Catalog) -> None:
                 attributes[a.name.upper()] = EnumValue(
                     a.name, len(attributes) + 1, f"{name}: {a.doc}"
                 )
+    for built in ("GSV_ClassName", "GSV_AttributeName"):
+        if built in cat.enums:
+            raise CatalogError(f"enumeration {built} is built from system_objects.toml")
     cat.enums["GSV_ClassName"] = Enumeration("GSV_ClassName", tuple(classes))
     cat.enums["GSV_AttributeName"] = Enumeration("GSV_AttributeName", tuple(attributes.values()))
