@@ -13,7 +13,8 @@ Simulated attributes:
   default 0), DSTAdjustment (INT minutes, default 0) and ApplyDST (SINT, default 0). SSV
   of any of them is kept for the rest of the run: setting the time moves the clock, which
   then keeps running with the virtual time. LocalDateTime = UTC + UTCOffset (+ the DST
-  adjustment while ApplyDST is set).
+  adjustment while ApplyDST is set). CSTOffset (LINT) is CurrentValue minus CST; setting
+  it moves the clock to CST + the value.
 - CST CurrentValue: µs since the controller started (the virtual time).
 - TASK: Rate, LastScanTime and MaxScanTime are the scan period in µs (every simulated scan
   takes one period); Watchdog is the watchdog budget expressed as time (5,000,000
@@ -23,7 +24,7 @@ Simulated attributes:
 - FAULTLOG: MinorEvents counts the minor faults recorded so far, MinorFaultBits has bit T
   set for each fault type T among them; SSV of either (any value) clears them, as the usual
   "clear minor faults" rung does. Major faults stop a run, so MajorEvents/MajorFaultBits
-  read 0.
+  read 0 and SSV of them (the "clear major faults" rung) has nothing to clear.
 - AXIS, MOTIONGROUP, COORDINATESYSTEM: every member of the object's tag is an attribute
   (stdlib/system_objects.toml `members_of`): GSV reads the member of the tag named as
   InstanceName, SSV writes a writable one (a new axis limit applies to the next motion
@@ -98,6 +99,11 @@ def _from_fields(words: list[int]) -> int | None:
     return (t - UNIX) // timedelta(microseconds=1)
 
 
+def _cst_us(ctx: ExecContext) -> int:
+    """Coordinated system time: µs since the controller started (the virtual time)."""
+    return round(ctx.now_ms * 1000)
+
+
 def _set_clock(ctx: ExecContext, utc_us: int) -> None:
     ctx.system["clock_offset_us"] = utc_us - EPOCH_US - round(ctx.now_ms * 1000)
 
@@ -130,9 +136,11 @@ def _read_value(ctx: ExecContext, key: tuple[str, str]) -> int | list[int]:
             return int(ctx.system.get("utc_offset_us", 0))
         if attr == "DSTADJUSTMENT":
             return int(ctx.system.get("dst_minutes", 0))
+        if attr == "CSTOFFSET":  # the clock is CST plus this offset
+            return _utc_us(ctx) - _cst_us(ctx)
         return int(ctx.system.get("apply_dst", 0))
     if cls == "CST":
-        return round(ctx.now_ms * 1000)
+        return _cst_us(ctx)
     if cls == "FAULTLOG":
         since = _minor_since_clear(ctx)
         if attr == "MINOREVENTS":
@@ -165,10 +173,14 @@ def _write_value(ctx: ExecContext, key: tuple[str, str], value: int | list[int])
             ctx.system["utc_offset_us"] = int(value)  # type: ignore[arg-type]
         elif attr == "DSTADJUSTMENT":
             ctx.system["dst_minutes"] = int(value)  # type: ignore[arg-type]
+        elif attr == "CSTOFFSET":
+            _set_clock(ctx, _cst_us(ctx) + int(value))  # type: ignore[arg-type]
         else:
             ctx.system["apply_dst"] = int(value)  # type: ignore[arg-type]
-    elif cls == "FAULTLOG":
+    elif cls == "FAULTLOG" and attr in ("MINOREVENTS", "MINORFAULTBITS"):
         ctx.system["minor_base"] = _minor_by_type(ctx)
+    # FAULTLOG MajorEvents/MajorFaultBits: a major fault ends the run, so there is never a
+    # major fault to clear and both keep reading 0.
     # TASK/PROGRAM MaxScanTime, OverlapCount: every simulated scan takes one period, so a
     # reset has nothing to clear.
 
