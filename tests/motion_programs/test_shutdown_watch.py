@@ -239,3 +239,15 @@ IF k = 12 THEN MAR(X, c4, positive_edge, enabled, 5.0, 1.0, 1); MDR(X, c5, 3); E
     assert tr.at(0.012, "c4.EXERR") == 5
     # there are only registration inputs 1 and 2 (MDR InputNumber is operand 2)
     assert tr.at(0.012, "c5.ER") == 1 and tr.at(0.012, "c5.EXERR") == 2
+
+
+def test_mgs_with_a_programmed_hard_shutdown_leaves_the_axis_shut_down(mp) -> None:
+    # ProgrammedStopMode 4 (Hard Shutdown): MGS Programmed shuts the axis down at once
+    decls = "  G : MOTION_GROUP;\n  Z : AXIS_VIRTUAL := (ProgrammedStopMode := 4);\n"
+    body = f"""IF k = 0 THEN {jog("Z", "c1")} END_IF;
+IF k = 20 THEN MGS(G, c2, programmed); END_IF;
+IF k = 30 THEN {mam("Z", "c3", 1.0)} END_IF;"""
+    tr = mp.trace(prog(decls, body), ["Z.ShutdownStatus", "Z.CommandVelocity", "c3.ERR"], 40)
+    assert tr.at(0.019, "Z.ShutdownStatus") == 0
+    assert tr.at(0.022, "Z.ShutdownStatus") == 1 and tr.at(0.022, "Z.CommandVelocity") == 0
+    assert tr.at(0.03, "c3.ERR") == 7
