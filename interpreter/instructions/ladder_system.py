@@ -36,6 +36,7 @@ is reported by `check` as U303 (see `unsupported`) and has no effect.
 from __future__ import annotations
 
 from datetime import UTC, datetime, timedelta
+from functools import cache
 
 from stdlib import SystemAttribute, catalog
 
@@ -52,8 +53,9 @@ UNIX = datetime(1970, 1, 1, tzinfo=UTC)
 EPOCH_US = (EPOCH - UNIX) // timedelta(microseconds=1)
 
 
+@cache
 def _attribute(key: tuple[str, str]) -> SystemAttribute | None:
-    return catalog().system_attribute(*key)
+    return catalog().system_attribute(*key)  # a GSV in a loop should not rescan the table
 
 
 def _shape(a: SystemAttribute) -> str:
@@ -63,7 +65,7 @@ def _shape(a: SystemAttribute) -> str:
 
 def unsupported(class_name: str, attribute: str, write: bool) -> bool:
     """True when GSV (write=False) / SSV (write=True) of this pair is not simulated (U303)."""
-    a = catalog().system_attribute(class_name, attribute)
+    a = _attribute((class_name.upper(), attribute.upper()))
     return a is None or ("set" if write else "get") not in a.simulated
 
 
