@@ -60,6 +60,8 @@ IMPLEMENTED = frozenset(
         "MATC",
         "MAW",
         "MCCP",
+        "MCSD",
+        "MCSR",
         "MCSV",
         "MDAC",
         "MDR",

@@ -1,6 +1,6 @@
 """Motion state instructions: MSO (servo on), MSF (servo off), MAFR (axis fault reset),
-MASD/MASR (axis shutdown and its reset), MGSD/MGSR (the same for every axis of a group)
-and MGSP (group strobe position).
+MASD/MASR (axis shutdown and its reset), MGSD/MGSR and MCSD/MCSR (the same for every axis
+of a group or of a coordinate system) and MGSP (group strobe position).
 
 A drive axis (AXIS_CIP_DRIVE and its aliases) completes the request at the next planner
 update (DN then, as the drive message takes a coarse update); a virtual axis has no drive,
@@ -14,8 +14,9 @@ the positions the tag shows, which are those of the latest planner update
 
 from __future__ import annotations
 
+from ..motion import MotionError
 from ..runtime.motion import Axis, Group, MotionRuntime
-from ..runtime.motion_layout import pack, packed_words, set_bits
+from ..runtime.motion_layout import pack, packed_words, set_bits, struct_type
 from ..vm.context import ExecContext
 from ..vm.values import f32
 from .motion_common import begin, clear_on_prescan, configured, fail, runtime
@@ -88,9 +89,11 @@ def _axis_words(ax: Axis) -> tuple[tuple[int, tuple[tuple[int, int], ...]], ...]
     return packed_words("AXIS_VIRTUAL" if ax.group.core.virtual[ax.index] else "AXIS_CIP_DRIVE")
 
 
-def _group_done(rt: MotionRuntime, g: Group, ctl: list, handle: int) -> None:
+def _group_done(
+    rt: MotionRuntime, g: Group, ctl: list, handle: int, axes: list[Axis] | None = None
+) -> None:
     """A group request completes at the next update when a drive takes part, else at once."""
-    if all(g.core.virtual[ax.index] for ax in g.axes):
+    if all(g.core.virtual[ax.index] for ax in (g.axes if axes is None else axes)):
         set_bits(ctl, DN=1)
         return
     rt.own(ctl, g, handle)
@@ -171,6 +174,56 @@ def mgsp(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
     set_bits(ctl, DN=1)
 
 
-@prescan("MSO", "MSF", "MAFR", "MASD", "MASR", "MGSD", "MGSR", "MGSP")
+_CS = struct_type("COORDINATE_SYSTEM")
+_CS_WORDS = packed_words("COORDINATE_SYSTEM")
+
+
+def _system_axes(rt: MotionRuntime, cs: list) -> list[Axis] | None:
+    """The axes a COORDINATE_SYSTEM tag names (None when one is not a configured axis)."""
+    names = [a.upper() for a in cs[_CS.index["AXES"]] if isinstance(a, str) and a]
+    by_name = {ax.name.upper(): ax for g in rt.groups for ax in g.axes}
+    axes = [by_name.get(n) for n in names]
+    if not axes or any(ax is None for ax in axes):
+        return None
+    return [ax for ax in axes if ax is not None]
+
+
+def _system_shutdown(cs: list, on: int) -> None:
+    at = _CS.index["SHUTDOWNSTATUS"]
+    cs[at] = on
+    for word, members in _CS_WORDS:
+        if any(idx == at for idx, _ in members):
+            pack(cs, word, members)
+
+
+def _coordinate_shutdown(ctx: ExecContext, rung: bool, cs: list, ctl: list, on: bool) -> None:
+    if not begin(ctl, rung):
+        return
+    rt = runtime(ctx)
+    axes = _system_axes(rt, cs)
+    if axes is None:  # a system without configured axes: error 11, as for an axis
+        fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
+        return
+    for ax in axes:
+        core = ax.group.core
+        core.shutdown_axis(ax.index) if on else core.reset_shutdown(ax.index)
+        set_tag_bits(ax, ShutdownStatus=int(on))
+    _system_shutdown(cs, int(on))
+    g = axes[0].group
+    _group_done(rt, g, ctl, rt.token(g), axes)
+
+
+@implements("MCSD")
+def mcsd(ctx: ExecContext, rung: bool, cs: list, ctl: list) -> None:
+    """Shut down every axis of a coordinate system, and show it on the system's status."""
+    _coordinate_shutdown(ctx, rung, cs, ctl, True)
+
+
+@implements("MCSR")
+def mcsr(ctx: ExecContext, rung: bool, cs: list, ctl: list) -> None:
+    _coordinate_shutdown(ctx, rung, cs, ctl, False)
+
+
+@prescan("MSO", "MSF", "MAFR", "MASD", "MASR", "MGSD", "MGSR", "MGSP", "MCSD", "MCSR")
 def _prescan(ctx: ExecContext, rung: bool, target: list, ctl: list) -> None:
     clear_on_prescan(ctl)

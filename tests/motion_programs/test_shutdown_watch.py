@@ -251,3 +251,24 @@ IF k = 30 THEN {mam("Z", "c3", 1.0)} END_IF;"""
     assert tr.at(0.019, "Z.ShutdownStatus") == 0
     assert tr.at(0.022, "Z.ShutdownStatus") == 1 and tr.at(0.022, "Z.CommandVelocity") == 0
     assert tr.at(0.03, "c3.ERR") == 7
+
+
+def test_mcsd_and_mcsr_shut_down_the_axes_of_a_coordinate_system(mp) -> None:
+    decls = "  CS : COORDINATE_SYSTEM := (Axes := [X, Y]);\n  Z : AXIS_VIRTUAL;\n"
+    body = f"""IF k = 0 THEN MCSD(CS, c1); END_IF;
+IF k = 5 THEN {mam("X", "c2", 1.0)} {mam("Z", "c3", 1.0)} END_IF;
+IF k = 10 THEN MCSR(CS, c4); END_IF;"""
+    watch = [
+        "c1.DN", "X.ShutdownStatus", "Y.ShutdownStatus", "Z.ShutdownStatus",
+        "CS.ShutdownStatus", "CS.CoordinateSystemStatus", "c2.ERR", "c3.DN", "c4.DN",
+    ]  # fmt: skip
+    tr = mp.trace(prog(decls, body), watch, scans=12)
+    assert tr.at(0.0, "c1.DN") == 1  # virtual axes only: done in the executing scan
+    assert [tr.at(0.0, f"{a}.ShutdownStatus") for a in ("X", "Y", "Z")] == [1, 1, 0]
+    assert tr.at(0.0, "CS.ShutdownStatus") == 1
+    assert tr.at(0.0, "CS.CoordinateSystemStatus") == 1  # ShutdownStatus is bit 0
+    assert tr.at(0.005, "c2.ERR") == 7  # an axis of the system refuses motion
+    assert tr.at(0.005, "c3.DN") == 1  # an axis outside the system is not affected
+    assert tr.at(0.01, "c4.DN") == 1
+    assert tr.at(0.01, "X.ShutdownStatus") == 0 and tr.at(0.01, "CS.ShutdownStatus") == 0
+    assert tr.at(0.01, "CS.CoordinateSystemStatus") == 0
