@@ -82,11 +82,10 @@ k := k + 1;
 def test_unsimulated_attributes_are_u303_not_errors(mp) -> None:
     src = (
         HEAD
-        + """  rev, entry : INT;
-  home : SINT;
+        + """  rev, entry, slice : INT;
 END_VAR
 GSV(ControllerDevice, , ProductRev, rev);
-GSV(Axis, X, HomeMode, home);
+GSV(Controller, , TimeSlice, slice);
 GSV(Task, THIS, DateTime, entry);
 """
     )
@@ -98,7 +97,7 @@ GSV(Task, THIS, DateTime, entry);
     diags = diags if isinstance(diags, list) else diags["diagnostics"]
     assert [d["code"] for d in diags] == ["U303", "U303", "U303"], diags
     assert "ProductRev cannot be read" in diags[0]["message"]
-    assert "HomeMode cannot be read" in diags[1]["message"]
+    assert "TimeSlice cannot be read" in diags[1]["message"]
     # DateTime belongs to WallClockTime, not Task
     assert "not an attribute logixst knows for class Task" in diags[2]["message"]
 
