@@ -149,3 +149,17 @@ def test_simulated_is_a_subset_of_access() -> None:
         for a in cls.attributes:
             assert a.simulated <= a.access, (cls.name, a.name)
             assert a.access, (cls.name, a.name)
+
+
+def test_system_object_attribute_types_are_known_types() -> None:
+    from interpreter.semantics.types import TypeTable
+
+    table = TypeTable()
+    for cls in catalog().system_classes.values():
+        assert cls.doc, cls.name
+        assert cls.instance in ("none", "name", "tag"), cls.name
+        for a in cls.attributes:
+            base, _, dims = a.type.partition("[")
+            assert table.get(base) is not None, (cls.name, a.name, a.type)
+            assert not dims or dims.rstrip("]").isdigit(), (cls.name, a.name, a.type)
+            assert a.doc, (cls.name, a.name)
