@@ -796,6 +796,8 @@ class MotionGroup:
         every motion of the axis. Passive homing that waits for a marker or torque event
         stays in process until a stop (Home or All), servo off or shutdown ends it.
         """
+        if mode == HomeMode.ACTIVE and self.shutdown[axis]:  # active homing moves the axis
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         err, waits = homing_error(
             bool(self.virtual[axis]), bool(self.servo_on[axis]), mode, sequence
         )
@@ -849,6 +851,8 @@ class MotionGroup:
             return bad_operand(7)
         if not clutch_accel > 0.0:
             return bad_operand(10)
+        if self.shutdown[slave]:
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         if not self.servo_on[slave]:
             return StartResult(error=MotionError.SERVO_OFF_STATE)
         last = int(self._last_gear_dir[slave])

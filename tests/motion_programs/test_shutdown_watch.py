@@ -272,3 +272,16 @@ IF k = 10 THEN MCSR(CS, c4); END_IF;"""
     assert tr.at(0.01, "c4.DN") == 1
     assert tr.at(0.01, "X.ShutdownStatus") == 0 and tr.at(0.01, "CS.ShutdownStatus") == 0
     assert tr.at(0.01, "CS.CoordinateSystemStatus") == 0
+
+
+def test_a_shut_down_axis_refuses_gearing_and_active_homing(mp) -> None:
+    # After MASD (scan 0, done in that scan) the axis is in the shutdown state: MAG with it
+    # as slave and an Active MAH (the default HomeMode of a virtual axis is Active) are
+    # refused with error 7 in the scan they execute.
+    body = """IF k = 0 THEN MASD(X, c1); END_IF;
+IF k = 10 THEN MAG(X, Y, c2, same, 1.0, 1, 1, command, real, disabled, 0.0, unitspersec2); END_IF;
+IF k = 20 THEN MAH(X, c3); END_IF;"""
+    tr = mp.trace(prog("", body), ["c1.DN", "c2.ER", "c2.ERR", "c3.ER", "c3.ERR"], scans=30)
+    assert tr.at(0.0, "c1.DN") == 1
+    assert (tr.at(0.01, "c2.ER"), tr.at(0.01, "c2.ERR")) == (1, 7)
+    assert (tr.at(0.02, "c3.ER"), tr.at(0.02, "c3.ERR")) == (1, 7)
