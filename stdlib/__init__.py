@@ -116,12 +116,48 @@ class MotionError:
     doc: str = ""
 
 
+_ELEMENTARY = frozenset(
+    {"BOOL", "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "REAL", "LREAL"}
+)
+SYSTEM_ACCESS = frozenset({"get", "set"})
+SYSTEM_INSTANCES = frozenset({"none", "name", "tag"})
+
+
+@dataclass(frozen=True, slots=True)
+class SystemAttribute:
+    """One GSV/SSV attribute of a controller object class (stdlib/system_objects.toml)."""
+
+    name: str
+    type: str
+    access: frozenset[str]  # "get" and/or "set": what the controller allows
+    simulated: frozenset[str]  # the part of access logixst executes
+    doc: str = ""
+    member: str = ""  # the value lives in this member of the instance tag ("" if not a tag)
+
+
+@dataclass(frozen=True, slots=True)
+class SystemClass:
+    name: str
+    instance: str  # "none", "name" or "tag": what InstanceName names
+    doc: str
+    attributes: tuple[SystemAttribute, ...]
+    members_of: str = ""  # data type whose members are attributes (motion object classes)
+
+    def attribute(self, name: str) -> SystemAttribute | None:
+        key = name.upper()
+        for a in self.attributes:
+            if a.name.upper() == key:
+                return a
+        return None
+
+
 @dataclass(slots=True)
 class Catalog:
     instructions: list[Instruction] = field(default_factory=list)
     enums: dict[str, Enumeration] = field(default_factory=dict)
     types: dict[str, TypeDef] = field(default_factory=dict)
     motion_errors: dict[int, MotionError] = field(default_factory=dict)
+    system_classes: dict[str, SystemClass] = field(default_factory=dict)  # by upper-case name
     _by_name: dict[tuple[str, str], Instruction] = field(default_factory=dict)
 
     def instruction(self, name: str, language: str) -> Instruction | None:
@@ -136,6 +172,11 @@ class Catalog:
 
     def enum(self, name: str) -> Enumeration:
         return self.enums[name]
+
+    def system_attribute(self, class_name: str, attribute: str) -> SystemAttribute | None:
+        """The GSV/SSV attribute `attribute` of object class `class_name` (any case)."""
+        cls = self.system_classes.get(class_name.upper())
+        return cls.attribute(attribute) if cls is not None else None
 
 
 class CatalogError(Exception):
@@ -196,6 +237,8 @@ def catalog() -> Catalog:
             values = tuple(
                 EnumValue(str(v["text"]), int(v["value"]), v.get("doc", "")) for v in e["values"]
             )
+            if e["name"] in cat.enums:  # facts once: a second definition would silently win
+                raise CatalogError(f"{path.name}: enumeration {e['name']} defined twice")
             cat.enums[e["name"]] = Enumeration(e["name"], values, bool(e.get("counts", False)))
         for raw in data.get("instruction", []):
             ins = _instruction(raw, path.stem, path.name)
@@ -234,8 +277,75 @@ def catalog() -> Catalog:
             cat.motion_errors[int(raw["code"])] = MotionError(
                 int(raw["code"]), raw["name"], raw.get("doc", "")
             )
+    _load_system_objects(cat)
     for ins in cat.instructions:
         for op in ins.operands:
             if op.enum is not None and op.enum not in cat.enums:
                 raise CatalogError(f"{ins.name}.{op.name}: unknown enum {op.enum}")
     return cat
+
+
+def _access(text: str, where: str) -> frozenset[str]:
+    words = frozenset(text.split())
+    if not words <= SYSTEM_ACCESS:
+        raise CatalogError(f"system_objects.toml: {where}: access must be 'get' and/or 'set'")
+    return words
+
+
+def _load_system_objects(cat: Catalog) -> None:
+    """GSV/SSV object classes and attributes, and the ClassName/AttributeName enumerations
+    built from them (numbered in file order; the numbers are private to logixst)."""
+    classes: list[EnumValue] = []
+    attributes: dict[str, EnumValue] = {}
+    for raw in _load_file(_ROOT / "system_objects.toml").get("class", []):
+        name = str(raw["name"])
+        if raw.get("instance") not in SYSTEM_INSTANCES:
+            raise CatalogError(f"system_objects.toml: {name}: bad instance kind")
+        attrs: list[SystemAttribute] = []
+        members_of = str(raw.get("members_of", "")).upper()
+        td = cat.types.get(members_of) if members_of else None
+        if members_of and td is None:
+            raise CatalogError(f"system_objects.toml: {name}: unknown type {members_of}")
+        member_names = {m.name.upper() for m in td.members} if td is not None else set()
+        for a in raw.get("attributes", []):
+            where = f"{name}.{a['name']}"
+            member = str(a.get("member", ""))
+            if not member and a["name"].upper() in member_names:
+                continue  # the tag has this member now: the member entry below describes it
+            if member and member.upper() not in member_names:
+                raise CatalogError(f"system_objects.toml: {where}: no member {member}")
+            access = _access(str(a["access"]), where)
+            simulated = _access(str(a.get("simulated", "")), where)
+            if not simulated <= access:
+                raise CatalogError(f"system_objects.toml: {where}: simulates what it cannot access")
+            attrs.append(
+                SystemAttribute(
+                    a["name"], str(a["type"]).upper(), access, simulated, a.get("doc", ""), member
+                )
+            )
+        listed = {a.name.upper() for a in attrs}
+        for m in td.members if td is not None else ():
+            base, _, dims = m.type.partition("[")
+            if m.hidden or base not in _ELEMENTARY or m.name.upper() in listed:
+                continue  # internal data, strings and axis references are not attributes
+            access = frozenset({"get"} if m.readonly or dims else {"get", "set"})
+            attrs.append(SystemAttribute(m.name, m.type, access, access, m.doc, m.name))
+        cls = SystemClass(
+            name,
+            str(raw["instance"]),
+            raw.get("doc", ""),
+            tuple(attrs),
+            str(members_of or "").upper(),
+        )
+        cat.system_classes[name.upper()] = cls
+        classes.append(EnumValue(name, len(classes) + 1, cls.doc))
+        for a in cls.attributes:
+            if a.name.upper() not in attributes:
+                attributes[a.name.upper()] = EnumValue(
+                    a.name, len(attributes) + 1, f"{name}: {a.doc}"
+                )
+    for built in ("GSV_ClassName", "GSV_AttributeName"):
+        if built in cat.enums:
+            raise CatalogError(f"enumeration {built} is built from system_objects.toml")
+    cat.enums["GSV_ClassName"] = Enumeration("GSV_ClassName", tuple(classes))
+    cat.enums["GSV_AttributeName"] = Enumeration("GSV_AttributeName", tuple(attributes.values()))

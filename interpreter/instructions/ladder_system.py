@@ -13,7 +13,8 @@ Simulated attributes:
   default 0), DSTAdjustment (INT minutes, default 0) and ApplyDST (SINT, default 0). SSV
   of any of them is kept for the rest of the run: setting the time moves the clock, which
   then keeps running with the virtual time. LocalDateTime = UTC + UTCOffset (+ the DST
-  adjustment while ApplyDST is set).
+  adjustment while ApplyDST is set). CSTOffset (LINT) is CurrentValue minus CST; setting
+  it moves the clock to CST + the value.
 - CST CurrentValue: µs since the controller started (the virtual time).
 - TASK: Rate, LastScanTime and MaxScanTime are the scan period in µs (every simulated scan
   takes one period); Watchdog is the watchdog budget expressed as time (5,000,000
@@ -23,17 +24,25 @@ Simulated attributes:
 - FAULTLOG: MinorEvents counts the minor faults recorded so far, MinorFaultBits has bit T
   set for each fault type T among them; SSV of either (any value) clears them, as the usual
   "clear minor faults" rung does. Major faults stop a run, so MajorEvents/MajorFaultBits
-  read 0.
-Everything else is reported by `check` as U303 (see `unsupported`) and has no effect.
+  read 0 and SSV of them (the "clear major faults" rung) has nothing to clear.
+- AXIS, MOTIONGROUP, COORDINATESYSTEM: every member of the object's tag is an attribute
+  (stdlib/system_objects.toml `members_of`): GSV reads the member of the tag named as
+  InstanceName, SSV writes a writable one (a new axis limit applies to the next motion
+  instruction, as a write to the tag member does).
+Which pairs are simulated is data (stdlib/system_objects.toml, `simulated`); everything else
+is reported by `check` as U303 (see `unsupported`) and has no effect.
 """
 
 from __future__ import annotations
 
 from datetime import UTC, datetime, timedelta
+from functools import cache
 
-from stdlib import catalog
+from stdlib import SystemAttribute, catalog
 
-from ..semantics.types import Elementary
+from ..runtime.motion import Axis, MotionRuntime
+from ..runtime.motion_layout import struct_type
+from ..semantics.types import Elementary, TypeTable
 from ..vm.context import ExecContext
 from ..vm.values import convert
 from .file_ops import _block
@@ -43,49 +52,21 @@ EPOCH = datetime(2024, 1, 1, tzinfo=UTC)
 UNIX = datetime(1970, 1, 1, tzinfo=UTC)
 EPOCH_US = (EPOCH - UNIX) // timedelta(microseconds=1)
 
-# (class, attribute) -> value shape: "LINT" (64-bit), "DINT7", or a scalar type name
-READABLE: dict[tuple[str, str], str] = {
-    ("WALLCLOCKTIME", "CURRENTVALUE"): "LINT",
-    ("WALLCLOCKTIME", "DATETIME"): "DINT7",
-    ("WALLCLOCKTIME", "LOCALDATETIME"): "DINT7",
-    ("WALLCLOCKTIME", "UTCOFFSET"): "LINT",
-    ("WALLCLOCKTIME", "DSTADJUSTMENT"): "INT",
-    ("WALLCLOCKTIME", "APPLYDST"): "SINT",
-    ("CST", "CURRENTVALUE"): "LINT",
-    ("TASK", "RATE"): "DINT",
-    ("TASK", "LASTSCANTIME"): "DINT",
-    ("TASK", "MAXSCANTIME"): "DINT",
-    ("TASK", "WATCHDOG"): "DINT",
-    ("TASK", "STARTTIME"): "LINT",
-    ("TASK", "OVERLAPCOUNT"): "DINT",
-    ("PROGRAM", "LASTSCANTIME"): "DINT",
-    ("PROGRAM", "MAXSCANTIME"): "DINT",
-    ("FAULTLOG", "MINOREVENTS"): "INT",
-    ("FAULTLOG", "MINORFAULTBITS"): "DINT",
-    ("FAULTLOG", "MAJOREVENTS"): "INT",
-    ("FAULTLOG", "MAJORFAULTBITS"): "DINT",
-}
-WRITABLE: frozenset[tuple[str, str]] = frozenset(
-    {
-        ("WALLCLOCKTIME", "CURRENTVALUE"),
-        ("WALLCLOCKTIME", "DATETIME"),
-        ("WALLCLOCKTIME", "LOCALDATETIME"),
-        ("WALLCLOCKTIME", "UTCOFFSET"),
-        ("WALLCLOCKTIME", "DSTADJUSTMENT"),
-        ("WALLCLOCKTIME", "APPLYDST"),
-        ("TASK", "MAXSCANTIME"),
-        ("TASK", "OVERLAPCOUNT"),
-        ("PROGRAM", "MAXSCANTIME"),
-        ("FAULTLOG", "MINOREVENTS"),
-        ("FAULTLOG", "MINORFAULTBITS"),
-    }
-)
+
+@cache
+def _attribute(key: tuple[str, str]) -> SystemAttribute | None:
+    return catalog().system_attribute(*key)  # a GSV in a loop should not rescan the table
+
+
+def _shape(a: SystemAttribute) -> str:
+    """How the value is laid out in memory: "LINT" (64-bit), "DINT7", or a scalar type name."""
+    return "DINT7" if a.type == "DINT[7]" else a.type
 
 
 def unsupported(class_name: str, attribute: str, write: bool) -> bool:
     """True when GSV (write=False) / SSV (write=True) of this pair is not simulated (U303)."""
-    key = (class_name.upper(), attribute.upper())
-    return key not in (WRITABLE if write else READABLE)
+    a = _attribute((class_name.upper(), attribute.upper()))
+    return a is None or ("set" if write else "get") not in a.simulated
 
 
 def attribute_names(cls: int, attr: int) -> tuple[str, str]:
@@ -120,6 +101,11 @@ def _from_fields(words: list[int]) -> int | None:
     return (t - UNIX) // timedelta(microseconds=1)
 
 
+def _cst_us(ctx: ExecContext) -> int:
+    """Coordinated system time: µs since the controller started (the virtual time)."""
+    return round(ctx.now_ms * 1000)
+
+
 def _set_clock(ctx: ExecContext, utc_us: int) -> None:
     ctx.system["clock_offset_us"] = utc_us - EPOCH_US - round(ctx.now_ms * 1000)
 
@@ -152,9 +138,11 @@ def _read_value(ctx: ExecContext, key: tuple[str, str]) -> int | list[int]:
             return int(ctx.system.get("utc_offset_us", 0))
         if attr == "DSTADJUSTMENT":
             return int(ctx.system.get("dst_minutes", 0))
+        if attr == "CSTOFFSET":  # the clock is CST plus this offset
+            return _utc_us(ctx) - _cst_us(ctx)
         return int(ctx.system.get("apply_dst", 0))
     if cls == "CST":
-        return round(ctx.now_ms * 1000)
+        return _cst_us(ctx)
     if cls == "FAULTLOG":
         since = _minor_since_clear(ctx)
         if attr == "MINOREVENTS":
@@ -187,10 +175,14 @@ def _write_value(ctx: ExecContext, key: tuple[str, str], value: int | list[int])
             ctx.system["utc_offset_us"] = int(value)  # type: ignore[arg-type]
         elif attr == "DSTADJUSTMENT":
             ctx.system["dst_minutes"] = int(value)  # type: ignore[arg-type]
+        elif attr == "CSTOFFSET":
+            _set_clock(ctx, _cst_us(ctx) + int(value))  # type: ignore[arg-type]
         else:
             ctx.system["apply_dst"] = int(value)  # type: ignore[arg-type]
-    elif cls == "FAULTLOG":
+    elif cls == "FAULTLOG" and attr in ("MINOREVENTS", "MINORFAULTBITS"):
         ctx.system["minor_base"] = _minor_by_type(ctx)
+    # FAULTLOG MajorEvents/MajorFaultBits: a major fault ends the run, so there is never a
+    # major fault to clear and both keep reading 0.
     # TASK/PROGRAM MaxScanTime, OverlapCount: every simulated scan takes one period, so a
     # reset has nothing to clear.
 
@@ -217,14 +209,39 @@ def _get(source: object, shape: str) -> int | list[int]:
     return words[0] if words else 0
 
 
+def _member(ctx: ExecContext, cls: str, instance: object, name: str) -> tuple[list, int] | None:
+    """(tag storage, member index) of a motion object attribute (AXIS, MOTIONGROUP, ...)."""
+    if not isinstance(instance, list):
+        return None  # InstanceName did not name a tag of the class
+    system_class = catalog().system_classes.get(cls)
+    if system_class is None or not system_class.members_of:
+        return None
+    axis = _axis_of(ctx, instance)
+    index = axis.layout.index if axis is not None else struct_type(system_class.members_of).index
+    at = index.get(name)
+    return (instance, at) if at is not None and at < len(instance) else None
+
+
+def _axis_of(ctx: ExecContext, instance: list) -> Axis | None:
+    rt = ctx.motion
+    return rt.axis(instance) if isinstance(rt, MotionRuntime) else None
+
+
 @implements("GSV")
 def gsv(ctx: ExecContext, rung: bool, cls: int, instance: object, attr: int, dest: object) -> None:
     if not rung:
         return
     key = attribute_names(cls, attr)
-    shape = READABLE.get(key)
-    if shape is not None:
-        _put(dest, shape, _read_value(ctx, key))
+    a = _attribute(key)
+    if a is None or "get" not in a.simulated:
+        return  # U303: not simulated, the destination keeps its value
+    if a.member:
+        where = _member(ctx, key[0], instance, a.member.upper())
+        if where is not None:
+            value = where[0][where[1]]
+            _put(dest, a.type, list(value) if isinstance(value, list) else value)
+        return
+    _put(dest, _shape(a), _read_value(ctx, key))
 
 
 @implements("SSV")
@@ -234,5 +251,19 @@ def ssv(
     if not rung:
         return
     key = attribute_names(cls, attr)
-    if key in WRITABLE:
-        _write_value(ctx, key, _get(source, READABLE[key]))
+    a = _attribute(key)
+    if a is None or "set" not in a.simulated:
+        return
+    if a.member:
+        where = _member(ctx, key[0], instance, a.member.upper())
+        if where is not None and isinstance(a_type := TypeTable().get(a.type), Elementary):
+            storage, at = where
+            elements, start, _, avail = _block(source, "Source")
+            if avail > 0:  # the element as it is (a REAL stays a REAL)
+                storage[at] = convert(elements[start], a_type)
+            rt = ctx.motion
+            axis = rt.axis(storage) if isinstance(rt, MotionRuntime) else None
+            if axis is not None:  # a new limit applies to the next motion instruction
+                rt.refresh(axis)  # type: ignore[union-attr]
+        return
+    _write_value(ctx, key, _get(source, _shape(a)))

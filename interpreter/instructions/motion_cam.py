@@ -1,4 +1,5 @@
-"""Cams: MCCP (calculate a cam profile) and MATC (time cam), and MDAC (master-driven link).
+"""Cams: MCCP (calculate a cam profile), MATC (time cam), MDAC (master-driven link) and
+MCSV (evaluate a profile at one master value).
 
 MCCP completes in the executing scan (SPEC 9.21). MATC sets DN and IP in the executing
 scan and shows TimeCamStatus (Immediate) or TimeCamPendingStatus (Pending) on the axis at
@@ -15,7 +16,7 @@ from ..motion import MotionError, MotionParameterError, calculate_cam_profile
 from ..runtime.motion import Tracked
 from ..runtime.motion_layout import CAM_MASTER, CAM_SEGMENT, CAM_SLAVE, CP_STATUS, set_bits
 from ..vm.context import ExecContext
-from ..vm.refs import ArrayRef
+from ..vm.refs import ArrayRef, Ref
 from .motion_common import (
     begin,
     clear_on_prescan,
@@ -148,4 +149,44 @@ def _prescan_matc(ctx: ExecContext, rung: bool, axis: list, ctl: list, *rest: ob
 def _prescan_mdac(
     ctx: ExecContext, rung: bool, slave: list, master: list, ctl: list, *rest: object
 ) -> None:
+    clear_on_prescan(ctl)
+
+
+# ------------------------------------------------------------------ MCSV
+# faceplate indices (EXERR): MotionControl 0, CamProfile 1, MasterValue 2
+_MCSV_PROFILE, _MCSV_MASTER = 1, 2
+
+
+@implements("MCSV")
+def mcsv(
+    ctx: ExecContext, rung: bool, ctl: list, cam_profile: ArrayRef, master: object,
+    slave: Ref, slope: Ref, slope2: Ref,
+) -> None:  # fmt: skip
+    """Evaluate a calculated profile at MasterValue: slave value and first and second
+    derivatives (the segment polynomial and its derivatives). Completes at once; a profile
+    not calculated is error 32, a master value outside the profile's range error 13
+    (docs/decisions/0065-motion-shutdown-watch-strobe.md)."""
+    if not begin(ctl, rung):
+        return
+    rt = runtime(ctx)
+    if cam_profile.start != 0:
+        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MCSV_PROFILE)
+        return
+    profile = rt.load_profile(cam_profile.elements)
+    if profile is None:
+        fail(rt, ctl, MotionError.CAM_PROFILE_NOT_CALCULATED)
+        return
+    x = real(master)
+    if not (math.isfinite(x) and profile.start <= x <= profile.end):
+        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MCSV_MASTER)
+        return
+    p, v, a = profile.evaluate(x)
+    slave.set(float(p))
+    slope.set(float(v))
+    slope2.set(float(a))
+    set_bits(ctl, DN=1)
+
+
+@prescan("MCSV")
+def _prescan_mcsv(ctx: ExecContext, rung: bool, ctl: list, *rest: object) -> None:
     clear_on_prescan(ctl)

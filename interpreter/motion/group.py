@@ -36,6 +36,7 @@ from interpreter.motion.enums import (
     StopType,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
+from interpreter.motion.events import Watch, WatchSet
 from interpreter.motion.gear import GearSet
 from interpreter.motion.generators import ProfileGen
 from interpreter.motion.homing import homing_error
@@ -134,6 +135,9 @@ class MotionGroup:
         self.actual_velocity = np.zeros(0)
         self.command_acceleration = np.zeros(0)
         self.servo_on = np.zeros(0, dtype=bool)
+        self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
+        self.watch = WatchSet()  # MAW watch-position events
+        self.registration: dict[tuple[int, int], int] = {}  # (axis, input) -> MAR handle
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
         self._alpha = np.zeros(0)
@@ -182,6 +186,7 @@ class MotionGroup:
         self.actual_velocity = np.append(self.actual_velocity, 0.0)
         self.command_acceleration = np.append(self.command_acceleration, 0.0)
         self.servo_on = np.append(self.servo_on, virtual)  # a virtual axis needs no MSO
+        self.shutdown = np.append(self.shutdown, False)
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
         self._alpha = lag_alpha(self.tau, self.cup)
@@ -221,7 +226,9 @@ class MotionGroup:
 
     # -- servo -------------------------------------------------------------------------
     def servo_on_axis(self, axis: int) -> StartResult:
-        """MSO: close the loop (no effect on a virtual axis)."""
+        """MSO: close the loop (no effect on a virtual axis); refused while shut down."""
+        if self.shutdown[axis]:
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         if not self.virtual[axis]:
             self.servo_on[axis] = True
             # the loop closes at the current actual position: no jump
@@ -238,8 +245,10 @@ class MotionGroup:
         return StartResult(handle=h)
 
     def shutdown_axis(self, axis: int) -> StartResult:
-        """MASD: end all motion of the axis at once and break its MDAC links."""
+        """MASD: end all motion of the axis at once, break its MDAC links and keep it in the
+        shutdown state (motion is refused with error 7) until reset_shutdown."""
         h = self._handle()
+        self.shutdown[axis] = True
         if not self.virtual[axis]:
             self.servo_on[axis] = False
 
@@ -249,6 +258,45 @@ class MotionGroup:
 
         self._pre.append(apply)
         return StartResult(handle=h)
+
+    def reset_shutdown(self, axis: int) -> StartResult:
+        """MASR: leave the shutdown state; the loop stays open (a drive axis needs MSO)."""
+        self.shutdown[axis] = False
+        return StartResult(handle=self._handle())
+
+    # -- watch position ------------------------------------------------------------------
+    def arm_watch(self, axis: int, position: float, forward: bool) -> StartResult:
+        """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
+        h = self._handle()
+        old = self.watch.arm(Watch(h, axis, position, forward, float(self.actual_position[axis])))
+        if old is not None:
+            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+        return StartResult(handle=h)
+
+    def disarm_watch(self, axis: int) -> StartResult:
+        """MDW: disarm the axis's watch; the arming instruction ends without completing."""
+        old = self.watch.disarm(axis)
+        if old is not None:
+            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+        return StartResult(handle=self._handle())
+
+    # -- registration ---------------------------------------------------------------------
+    def arm_registration(self, axis: int, input_number: int) -> StartResult:
+        """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
+        an armed registration waits (IP) until MDR or a later MAR on the same input."""
+        h = self._handle()
+        old = self.registration.get((axis, input_number))
+        self.registration[(axis, input_number)] = h
+        if old is not None:
+            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+        return StartResult(handle=h)
+
+    def disarm_registration(self, axis: int, input_number: int) -> StartResult:
+        """MDR: disarm the input; the arming MAR ends without completing."""
+        old = self.registration.pop((axis, input_number), None)
+        if old is not None:
+            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+        return StartResult(handle=self._handle())
 
     def _kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
         for g in [g for g in self._gens if g.axis == axis]:
@@ -525,6 +573,8 @@ class MotionGroup:
             return bad_operand(p + 7)
         if not master_driven and lock_direction != LockDirection.NONE:
             return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+        if self.shutdown[axis]:
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         if not self.servo_on[axis]:
             return StartResult(error=MotionError.SERVO_OFF_STATE)
         if master_driven and self._find_link(axis, mt) is None:
@@ -746,6 +796,8 @@ class MotionGroup:
         every motion of the axis. Passive homing that waits for a marker or torque event
         stays in process until a stop (Home or All), servo off or shutdown ends it.
         """
+        if mode == HomeMode.ACTIVE and self.shutdown[axis]:  # active homing moves the axis
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         err, waits = homing_error(
             bool(self.virtual[axis]), bool(self.servo_on[axis]), mode, sequence
         )
@@ -799,6 +851,8 @@ class MotionGroup:
             return bad_operand(7)
         if not clutch_accel > 0.0:
             return bad_operand(10)
+        if self.shutdown[slave]:
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         if not self.servo_on[slave]:
             return StartResult(error=MotionError.SERVO_OFF_STATE)
         last = int(self._last_gear_dir[slave])
@@ -933,6 +987,8 @@ class MotionGroup:
         if pending and axis in self._cam_claim and self._claim_mode.get(axis) != master_driven:
             # a pending cam must be in the mode of the active one (MATC seed)
             return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
+        if self.shutdown[axis]:
+            return StartResult(error=MotionError.SHUTDOWN_STATE)
         if not self.servo_on[axis]:
             return StartResult(error=MotionError.SERVO_OFF_STATE)
         if master_driven and not pending and self._find_link(axis, MotionType.TIME_CAM) is None:
@@ -1069,6 +1125,7 @@ class MotionGroup:
             servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
             self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
         cams.end_update()
+        self.watch.check(self.actual_position, ev)
         post, self._post = self._post, []
         for f in post:
             f(ev)
@@ -1137,6 +1194,7 @@ class MotionGroup:
         st["HomingStatus"] = homing
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
+        st["ShutdownStatus"] = self.shutdown.copy()
         # every queued request has been applied: the claim is exactly the running cams
         self._cam_claim = set(self._cams.active_axes().tolist())
         self._claim_mode = {c.axis: c.clock is not None for c in self._cams.cams}

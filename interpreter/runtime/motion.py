@@ -38,7 +38,7 @@ DEFAULT_CUP_MS = 2.0
 _MG = struct_type("MOTION_GROUP").index
 
 # instructions whose motion reports completion with PC (MAJ never completes; MDAC has no PC)
-_PC_KINDS = frozenset({"MAM", "MAS", "MGS", "MATC", "MAH"})
+_PC_KINDS = frozenset({"MAM", "MAS", "MGS", "MATC", "MAH", "MAW"})
 
 # axis members written after every planner update (REAL) ...
 _REALS = (
@@ -351,9 +351,10 @@ class MotionRuntime:
         n = len(g.axes)
         servo = core.servo_on.astype(np.int64)
         drive = servo & ~core.virtual
+        shutdown = core.shutdown.astype(np.int64)
         sources = {
             "MOTIONSTATUS": core.motion_status_word().astype(np.int64),
-            "AXISSTATUS": servo | (drive << 1),
+            "AXISSTATUS": servo | (drive << 1) | (shutdown << 2),
             "SERVOACTIONSTATUS": servo,
             "DRIVEENABLESTATUS": drive,
         }
@@ -393,7 +394,7 @@ class MotionRuntime:
         return np.where(k > 0, (pos - past) / (np.maximum(k, 1) * cup), 0.0)
 
 
-_STATUS_KEY = {name.upper(): name for name in (*STATUS_BITS, "ServoActionStatus")}
+_STATUS_KEY = {name.upper(): name for name in (*STATUS_BITS, "ServoActionStatus", "ShutdownStatus")}
 
 
 @dataclass(frozen=True, slots=True)

@@ -863,9 +863,12 @@ class Checker(LadderChecks):
         c, a = attribute_names(cls, attr)
         if unsupported(c, a, write=ins.name == "SSV"):
             what = "set" if ins.name == "SSV" else "read"
+            known = catalog().system_attribute(c, a) is not None  # stdlib/system_objects.toml
             self.err(
                 "U303",
-                f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller",
+                f"{ins.name}: {_text(args[0])} attribute {_text(args[2])} cannot be {what} in the simulated controller"
+                if known
+                else f"{ins.name}: {_text(args[2])} is not an attribute logixst knows for class {_text(args[0])}; it is not simulated",
                 args[2].span,
             )
 

@@ -124,3 +124,32 @@ def test_unsupported_pairs_are_reported_and_have_no_effect() -> None:
     assert r.elements[0] == 77
     sv.gsv(ctx, False, _cls("TASK"), 0, _attr("Rate"), r)  # false rung: no action
     assert r.elements[0] == 77
+
+
+def test_cst_offset_is_the_clock_minus_cst_and_setting_it_moves_the_clock() -> None:
+    ctx = ExecContext(now_ms=250.0)  # CST = 250,000 µs since the controller started
+    off = _scalar(LINT)
+    _gsv(ctx, "WallClockTime", "CSTOffset", off)
+    assert off.elements[0] == EPOCH_US  # clock EPOCH + 0.25 s minus CST 0.25 s
+    # an offset of EPOCH + 1 h: the clock reads CST + that, i.e. 01:00:00.25 on 2024-01-01
+    _ssv(ctx, "WallClockTime", "CSTOffset", _scalar(LINT, EPOCH_US + 3_600_000_000))
+    dt = [0] * 7
+    _gsv(ctx, "WallClockTime", "DateTime", _mem(dt, DINT))
+    assert dt == [2024, 1, 1, 1, 0, 0, 250000]
+
+
+def test_clearing_major_faults_leaves_the_minor_log() -> None:
+    ctx = ExecContext()
+    ctx.minor(4, 4, "x", site=1)
+    _ssv(ctx, "FAULTLOG", "MajorEvents", _scalar(INT, 0))
+    _ssv(ctx, "FAULTLOG", "MajorFaultBits", _scalar(DINT, 0))
+    n, major = _scalar(INT), _scalar(INT, 5)
+    _gsv(ctx, "FAULTLOG", "MinorEvents", n)
+    _gsv(ctx, "FAULTLOG", "MajorEvents", major)
+    assert (n.elements[0], major.elements[0]) == (1, 0)
+
+
+def test_pairs_the_table_does_not_know_for_a_class_are_not_simulated() -> None:
+    # DateTime is a WallClockTime attribute, not a Task one
+    assert sv.unsupported("TASK", "DateTime", write=False)
+    assert catalog().system_attribute("TASK", "DateTime") is None

@@ -33,3 +33,37 @@ def test_transitional_matc_in_ladder(mp) -> None:
     assert [tr.at(0.2, n) for n in ("c1.EN", "c1.DN", "c1.IP")] == [0, 1, 1]
     # true again in scan 300 while the cam (0.102..1.102) is still active: executes, error 23
     assert [tr.at(0.3, n) for n in ("c1.EN", "c1.ER", "c1.ERR", "c1.DN")] == [1, 1, 23, 0]
+
+
+LADDER_EVENTS = """VAR
+  A : AXIS_VIRTUAL := (MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  G : MOTION_GROUP;
+  cw, cr, cs, cj : MOTION_INSTRUCTION;
+  go, stop : BOOL;
+  k : DINT;
+END_VAR
+XIC(go)MAW(A,cw,Forward,0.2)MAR(A,cr,Positive_Edge,Disabled,0,0,1)MAJ(A,cj,Forward,10.0,Units per sec,1000.0,Units per sec2,1000.0,Units per sec2,Trapezoidal,0.0,0.0,Units per sec3,Disabled,Programmed,0.0,None);
+XIC(stop)MGSD(G,cs);
+ADD(k,1,k);
+GEQ(k,10)OTE(go);
+GEQ(k,100)OTE(stop);
+"""
+
+
+def test_watch_registration_and_group_shutdown_in_ladder(mp) -> None:
+    # go from scan 10: the jog starts at the update 0.012; its accel phase (0.01 s) covers
+    # 0.05, then 10/s: 0.2 is passed at clock 0.01 + 0.15/10 = 0.025, i.e. t = 0.037, so at
+    # the update 0.038. MGSD in scan 100 ends the jog at the update 0.102.
+    tr = mp.trace(
+        LADDER_EVENTS,
+        ["cw.EN", "cw.PC", "A.WatchEventStatus", "cr.IP", "A.RegEvent1ArmedStatus",
+         "cs.DN", "A.ShutdownStatus", "A.CommandVelocity", "cj.IP"],
+        scans=120,
+        name="prog.rll",
+    )  # fmt: skip
+    assert tr.at(0.009, "cw.EN") == 0 and tr.at(0.01, "cw.EN") == 1
+    assert tr.first("cw.PC", lambda v: v == 1) == 0.038
+    assert tr.at(0.038, "A.WatchEventStatus") == 1
+    assert tr.at(0.099, "cr.IP") == 1 and tr.at(0.099, "A.RegEvent1ArmedStatus") == 1
+    assert tr.at(0.1, "cs.DN") == 1 and tr.at(0.1, "A.ShutdownStatus") == 1
+    assert tr.at(0.102, "A.CommandVelocity") == 0 and tr.at(0.102, "cj.IP") == 0
