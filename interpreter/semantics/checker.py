@@ -57,6 +57,8 @@ REAL_FUNCTIONS = {
     "DEG",
     "RAD",
 }
+# ST functions whose result is BOOL whatever the argument (tests of a REAL value)
+BOOL_FUNCTIONS = {"ISINF", "ISNAN"}
 
 
 @dataclass(slots=True)
@@ -1189,6 +1191,8 @@ class Checker(LadderChecks):
             return None
         if ins.name in REAL_FUNCTIONS:
             return LREAL if t is LREAL else REAL
+        if ins.name in BOOL_FUNCTIONS:
+            return BOOL
         return t
 
 
