@@ -35,6 +35,7 @@ RM003 = {
     "ASCII conversion": "DTOS STOD RTOS STOR UPPER LOWER",
     "alarm": "ALMD ALMA",
     "license": "LV",
+    "program conversion": "PCE",
 }
 
 RM006 = {
