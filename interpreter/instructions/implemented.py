@@ -44,6 +44,7 @@ IMPLEMENTED = frozenset(
         "DFF",
         "DIV",
         "DTOS",
+        "DTR",
         "FFL",
         "FFU",
         "FIND",

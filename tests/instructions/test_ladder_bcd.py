@@ -97,3 +97,30 @@ def test_tod_frd_and_their_v36_names_in_a_ladder_routine(st) -> None:  # noqa: A
     assert r.code == 0, r.err
     # b = 16#1234 = 4660, c = 1234, d = 16#56 = 86, e = 56, a = 99 + 16#12 (18) = 117
     assert r.tags == {"a": 117, "b": 4660, "c": 1234, "d": 86, "e": 56}
+
+
+# ------------------------------------------------------------------ DTR (special chapter)
+def test_dtr_is_true_once_per_change_of_the_masked_bits() -> None:
+    from interpreter.instructions import ladder_dtr
+
+    ctx, ref = ExecContext(), _dest(DINT)
+    ladder_dtr.dtr_prescan(ctx, True, 0x1234, 0x00FF, ref)
+    assert ref.get() == 0x34  # prescan: Reference = 16#1234 AND 16#00FF = 16#34
+    outs = []
+    for source in (0x1234, 0x5634, 0x5635, 0x5635):
+        outs.append(ladder_dtr.dtr(ctx, True, source, 0x00FF, ref))
+    # masked: 34 (same), 34 (only a blocked bit changed), 35 (changed), 35 (same)
+    assert outs == [False, False, True, False] and ref.get() == 0x35
+    assert ladder_dtr.dtr(ctx, False, 0x00AB, 0x00FF, ref) is False
+    assert ref.get() == 0xAB  # false rung: Reference follows the masked Source silently
+
+
+def test_dtr_in_a_ladder_routine_counts_changes(st) -> None:  # noqa: ANN001
+    src = """
+    VAR s : DINT; r : DINT; hits : DINT; END_VAR
+    ADD(s,1,s);
+    DTR(s,16#FFFC,r)ADD(hits,1,hits);
+    """
+    # s = 1..12; masked by 16#FFFC (low two bits dropped): 0,0,0,4,4,4,4,8,8,8,8,12.
+    # Prescan left r = 0, so the rung is true at s = 4, 8 and 12: three hits.
+    assert st.run(src, "hits", "r", scans=12, name="main.rll").tags == {"hits": 3, "r": 12}
