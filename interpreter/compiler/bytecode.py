@@ -25,7 +25,7 @@ Values:
   NEG type, NOT type  unary operators
   BIN (op, type)      pop b, a; push a op b computed in `type` (wraps, float32 rounding)
   CMP (op, type)      pop b, a; push BOOL
-  FN (key, type)      pop the argument, call the catalog function, push the result as `type`
+  FN (key, type, n)   pop n arguments (2 for ATAN2, else 1), call the catalog function, push the result as `type`
   RETV (i, type)      push return value i of the last JSR, converted to `type`
   RETN n              push whether the last JSR's routine returned values (RET); a RET with
                       another count than n is major fault 4/31

@@ -419,8 +419,9 @@ class RoutineCompiler:
                 assert isinstance(t, Elementary)
                 self.emit(Op.CONST, (0, t))
                 return t
-            self.value(e.args[0].value, self.type_of(e.args[0].value))
-            self.emit(Op.FN, (ins.key, t), e.span)
+            for a in e.args:  # one argument, two for ATAN2
+                self.value(a.value, self.type_of(a.value))
+            self.emit(Op.FN, (ins.key, t, len(e.args)), e.span)
             return t
         raise AssertionError(f"cannot compile {e}")
 

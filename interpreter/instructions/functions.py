@@ -1,5 +1,5 @@
 """Structured Text expression functions: ABS SQRT LN LOG SIN COS TAN ASIN ACOS ATAN DEG RAD
-TRUNC (and the aliases TRN ASN ACS ATN).
+TRUNC (and the aliases TRN ASN ACS ATN), and ATAN2, the only one with two arguments.
 
 Each returns the function result as a Python number; the VM converts it to the result type
 the catalog states (REAL, LREAL for an LREAL argument; ABS and TRUNC keep the argument's
@@ -122,3 +122,9 @@ def trunc(ctx: ExecContext, rung: bool, x: Number) -> Number:
     if not math.isfinite(x):
         return x
     return float(math.trunc(x))  # stays a REAL/LREAL: -2.7 -> -2.0
+
+
+@implements("ATAN2@st")
+def atan2(ctx: ExecContext, rung: bool, y: Number, x: Number) -> float:
+    """Angle of (x, y) in radians, -pi..pi; atan2(0, 0) is 0 (IEEE, as the controller)."""
+    return math.atan2(y, x)

@@ -1,5 +1,5 @@
 """Ladder compute/math instructions with a destination: ADD SUB MUL DIV MOD SQR NEG ABS XPY,
-the trigonometric and logarithmic family SIN COS TAN ASN ACS ATN LN LOG, DEG RAD TRN, and
+the trigonometric and logarithmic family SIN COS TAN ASN ACS ATN ATAN2 LN LOG, DEG RAD TRN, and
 the limit / mask-compare input instructions LIM and MEQ.
 
 Arithmetic (SPEC 3.3, 9.19, decision 0030):
@@ -246,3 +246,12 @@ def meq(ctx: ExecContext, rung: bool, source: int, mask: int, compare: int) -> b
     if not rung:
         return False
     return (int(source) & int(mask)) == (int(compare) & int(mask))
+
+
+# ------------------------------------------------------------------ ATAN2
+@implements("ATAN2@rll")
+def atan2_rung(ctx: ExecContext, rung: bool, y: Number, x: Number, dest: Dest) -> None:
+    """Dest = atan2(Source Y, Source X) in radians; REAL unless Dest or a source is LREAL."""
+    if rung:
+        single = _single(dest, y, x)
+        store(ctx, dest, _fl(math.atan2(_fl(y, single), _fl(x, single)), single))

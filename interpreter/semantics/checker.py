@@ -58,7 +58,10 @@ REAL_FUNCTIONS = {
     "ATN",
     "DEG",
     "RAD",
+    "ATAN2",
 }
+# ST functions whose result is BOOL whatever the argument (tests of a REAL value)
+BOOL_FUNCTIONS = {"ISINF", "ISNAN"}
 
 
 @dataclass(slots=True)
@@ -1309,14 +1312,20 @@ class Checker(LadderChecks):
                 c.span,
             )
             return None
-        t = self.expr(c.args[0].value)
-        if t is None:
-            return None
-        if not (isinstance(t, Elementary) and not t.is_bool):
-            self.err("E105", f"{ins.name} needs a number, not {t}", c.args[0].span)
-            return None
+        arg_types: list[Elementary] = []
+        for a in c.args:  # ATAN2 takes two numbers, every other function one
+            at = self.expr(a.value)
+            if at is None:
+                return None
+            if not (isinstance(at, Elementary) and not at.is_bool):
+                self.err("E105", f"{ins.name} needs a number, not {at}", a.span)
+                return None
+            arg_types.append(at)
+        t = LREAL if len(arg_types) > 1 and LREAL in arg_types else arg_types[0]
         if ins.name in REAL_FUNCTIONS:
             return LREAL if t is LREAL else REAL
+        if ins.name in BOOL_FUNCTIONS:
+            return BOOL
         return t
 
 

@@ -459,10 +459,10 @@ class Translator:
             else:
                 st.append(_Val(f"({a.expr} {_PY_CMP[rel]} {b.expr})", BOOL))
         elif op is Op.FN:
-            key, t = arg  # type: ignore[misc]
-            v = self.pop_val()
+            key, t, count = arg  # type: ignore[misc]
+            fn_args = ", ".join(reversed([self.pop_val().expr for _ in range(count)]))
             fn = self.impl(key)
-            call = f"{fn}(ctx, True, {v.expr})"
+            call = f"{fn}(ctx, True, {fn_args})"
             if self.ovf and isinstance(t, Elementary) and t.kind is Kind.INT:
                 st.append(_Val(f"_vi(ctx, {call}, {t.bits}, {t.signed})", t))  # ABS of the minimum
             elif self.ovf and isinstance(t, Elementary) and t.kind is Kind.REAL:
