@@ -214,6 +214,7 @@ class _OperandCheck:
             or fmt in ("routine", "label", "array")
             or op.nullable
             or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
+            or op.types == ("MODULE",)
         )
         return _OperandCheck(
             op,
@@ -982,6 +983,14 @@ class Checker(LadderChecks):
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
             self.a.type_of[id(e)] = DINT
             return True
+        if op.types == ("MODULE",) and isinstance(e, n.Name):
+            tag = self.lookup(e.ident)
+            if tag is None or not (isinstance(tag.type, StructType) and tag.type.name == "MODULE"):
+                # a module's name (an AOI's MODULE InOut: `IO_Status(Inst, Rack1, ...)`), not a
+                # tag, even where a tag has the same name (decision 0054)
+                self.a.enum_of[id(e)] = 0
+                self.a.type_of[id(e)] = DINT
+                return True
         if op.nullable and const_number(e) == 0:
             return True  # a literal 0 means the optional array is not used
         if fmt == "array":

@@ -182,3 +182,51 @@ k := k + 1;
     assert tags == {"X.CommandPosition": pytest.approx(10.0, abs=1e-4), "c1.PC": True}
     bad = src.replace("spd : DINT := 5;", "spd : BOOL;")
     assert [d["code"] for d in json.loads(st.check(bad).out)] == ["E105"]
+
+
+# ------------------------------------------------------------ module references
+MODULE_AOI = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
+<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="35.01" TargetName="M" TargetType="Controller">
+<Controller Use="Target" Name="M" ProcessorType="1756-L83E" MajorRev="35" MinorRev="11">
+<AddOnInstructionDefinitions>
+<AddOnInstructionDefinition Name="IO_Status" Revision="1.0">
+<Parameters>
+<Parameter Name="EnableIn" TagType="Base" DataType="BOOL" Usage="Input" Required="false" Visible="false"/>
+<Parameter Name="EnableOut" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="false"/>
+<Parameter Name="Module_In" TagType="Base" DataType="MODULE" Usage="InOut" Required="true" Visible="true"/>
+<Parameter Name="Faulted" TagType="Base" DataType="BOOL" Usage="Output" Required="false" Visible="true"/>
+</Parameters>
+<Routines><Routine Name="Logic" Type="RLL"><RLLContent>
+<Rung Number="0" Type="N"><Text><![CDATA[NOP();]]></Text></Rung>
+</RLLContent></Routine></Routines>
+</AddOnInstructionDefinition>
+</AddOnInstructionDefinitions>
+<Tags>
+<Tag Name="Rack1" TagType="Base" DataType="IO_Status"/>
+<Tag Name="Other" TagType="Base" DataType="IO_Status"/>
+<Tag Name="n" TagType="Base" DataType="DINT"/>
+</Tags>
+<Programs><Program Name="Main" MainRoutineName="Logic"><Routines>
+<Routine Name="Logic" Type="RLL"><RLLContent>
+<Rung Number="0" Type="N"><Text><![CDATA[{rung}]]></Text></Rung>
+</RLLContent></Routine>
+</Routines></Program></Programs>
+</Controller>
+</RSLogix5000Content>
+"""
+
+
+@pytest.mark.parametrize(
+    ("rung", "expected"),
+    [
+        # Master_Main_Program (v35): IO_Module_Status(ENET_ECP100_A_0,ENET_ECP100_A_0,...): the
+        # MODULE InOut names the module, here also the name of the instance tag
+        ("IO_Status(Rack1,Rack1);", []),
+        ("IO_Status(Other,Drive7);", []),  # a module that is no tag at all
+        ("IO_Status(Other,n.0);", ["E105"]),  # a bit is not a module
+    ],
+)
+def test_module_inout_takes_a_module_name(tmp_path: Path, rung: str, expected: list[str]) -> None:
+    path = tmp_path / "module.L5X"
+    path.write_text(MODULE_AOI.format(rung=rung))
+    assert codes(path) == expected
