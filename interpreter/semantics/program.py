@@ -151,9 +151,11 @@ def resolve_typeref(
                     ref.span,
                 )
             )
-        else:
-            diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
+            return types.declare_unknown(ref.name)  # one U306 per type (decision 0056)
+        diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
         return unknown_type(ref.name)
+    if isinstance(base, StructType) and base.unknown:
+        return base  # already reported; an array of it accepts any use as well
     if not ref.dims:
         return base
     if len(ref.dims) > MAX_DIMS:

@@ -213,6 +213,12 @@ class TypeTable:
         self._types[name.upper()] = st
         return st
 
+    def declare_unknown(self, name: str) -> StructType:
+        """Record a type reported as missing, so later references to it are not reported again."""
+        st = unknown_type(name)
+        self._types[name.upper()] = st
+        return st
+
     def add_member(self, st: StructType, name: str, mt: DataType) -> None:
         self._add_member(st, name, mt)
 

@@ -234,3 +234,42 @@ def test_uses_of_module_tags_without_data_do_not_execute(
     assert [d.code for d in load([path]).diagnostics] == ["U306", "U306"]
     tags = run(capsys, path, 1, "Counts", "Rack3:O.Data[3]", "InWord")
     assert tags == {"Counts": 0, "Rack3:O.Data[3]": -128, "InWord": 40}
+
+
+MISSING_TYPE = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
+<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="34.01" TargetName="T" TargetType="Controller">
+<Controller Use="Target" Name="T" ProcessorType="5069-L320ER" MajorRev="34" MinorRev="11">
+<DataTypes>
+<DataType Name="Station" Family="NoFamily" Class="User"><Members>
+<Member Name="Inputs" DataType="AB:5000_DI16:I:0" Dimension="0" Radix="NullType" Hidden="false"/>
+<Member Name="Count" DataType="DINT" Dimension="0" Radix="Decimal" Hidden="false"/>
+</Members></DataType>
+</DataTypes>
+<Tags>
+<Tag Name="St" TagType="Base" DataType="Station"/>
+<Tag Name="Copies" TagType="Base" DataType="AB:5000_DI16:I:0" Dimensions="2"/>
+<Tag Name="n" TagType="Base" DataType="DINT"><Data Format="Decorated"><DataValue DataType="DINT" Value="7"/></Data></Tag>
+</Tags>
+<Programs><Program Name="Main" MainRoutineName="Logic"><Routines>
+<Routine Name="Logic" Type="ST"><STContent>
+<Line Number="0"><![CDATA[St.Count := St.Inputs.Pt00.Data + Copies[1].Pt03.Data; n := n + 1;]]></Line>
+</STContent></Routine>
+</Routines></Program></Programs>
+<Tasks><Task Name="T" Type="CONTINUOUS" Priority="10" Watchdog="500">
+<ScheduledPrograms><ScheduledProgram Name="Main"/></ScheduledPrograms></Task></Tasks>
+</Controller>
+</RSLogix5000Content>
+"""
+
+
+def test_module_defined_type_missing_is_reported_once(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # AB:5000_DI16:I:0 is used by a UDT member and an array tag, and no module of the file
+    # shows its layout: one U306 (at its first declaration), none at the second or the uses
+    path = tmp_path / "missing_type.L5X"
+    path.write_text(MISSING_TYPE)
+    found = [(d.code, d.span.line) for d in load([path]).diagnostics]
+    assert found == [("U306", 6)]
+    # the assignment that reads them does not execute; the next statement does: n = 7 + 1
+    assert run(capsys, path, 1, "St.Count", "n") == {"St.Count": 0, "n": 8}
