@@ -15,6 +15,7 @@ Places:
 Values:
   CONST v type        push a constant
   SYS name            push a system flag (S:FS ...)
+  SYSPLACE name       push the place of a status flag (ladder OTU(S:V) writes it)
   LOAD type           pop place, push its value
   STORE type          pop value, pop place, convert the value to `type` and store it
                       (a structure or array value is copied element by element)
@@ -79,6 +80,7 @@ class Op(Enum):
     IBIT = "IBIT"
     CONST = "CONST"
     SYS = "SYS"
+    SYSPLACE = "SYSPLACE"
     LOAD = "LOAD"
     STORE = "STORE"
     REF = "REF"

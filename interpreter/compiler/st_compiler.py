@@ -346,6 +346,9 @@ class RoutineCompiler:
 
     # ------------------------------------------------------------ expressions
     def place(self, e: n.Expr) -> None:
+        if isinstance(e, n.Name) and id(e) in self.a.system_of:  # OTU(S:V) in ladder
+            self.emit(Op.SYSPLACE, self.a.system_of[id(e)])
+            return
         if isinstance(e, n.Name):
             tag = self.a.tag_of[id(e)]
             self.emit(Op.TAG, tag.slot)

@@ -151,9 +151,8 @@ def test_tags_named_true_and_false(tmp_path: Path, capsys: pytest.CaptureFixture
     )
     assert codes(path) == []
     # rung 0 writes True := 1 and unlatches False (exported as 1); rung 1 sees both, so b is
-    # set only if both rung-0 instructions wrote the tags (`--watch True` would read the word
-    # as the literal, so the tags are observed through b)
-    assert run(path, capsys, "b") == {"b": True}
+    # set; --watch names them as tags too
+    assert run(path, capsys, "True", "False", "b") == {"True": True, "False": False, "b": True}
 
 
 def test_without_such_tags_true_is_not_a_tag(tmp_path: Path) -> None:
@@ -230,3 +229,20 @@ def test_module_inout_takes_a_module_name(tmp_path: Path, rung: str, expected: l
     path = tmp_path / "module.L5X"
     path.write_text(MODULE_AOI.format(rung=rung))
     assert codes(path) == expected
+
+
+# ------------------------------------------------------------ status flags as outputs
+def test_status_flag_written_by_a_rung(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # Random_AOI_Test's A_Uniform_RNG (v20): OTU(S:V) clears the overflow flag. Here
+    # 2147483647 + 1 overflows a DINT (S:V set, seen by rung 1), rung 2 clears it, rung 3
+    # sees it clear and sets bit 0 of dst[0]; ADD stores the wrapped -2147483648.
+    path = export(
+        tmp_path,
+        "ADD(2147483647,1,d);",
+        "XIC(S:V)OTE(b);",
+        "OTU(S:V);",
+        "XIO(S:V)OTL(dst[0].0);",
+    )
+    assert codes(path) == []
+    tags = run(path, capsys, "b", "d", "dst[0]")
+    assert tags == {"b": True, "d": -2147483648, "dst[0]": 1}
