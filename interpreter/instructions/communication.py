@@ -36,6 +36,7 @@ from __future__ import annotations
 from stdlib import catalog
 
 from ..vm.context import ExecContext
+from ..vm.refs import ArrayRef
 from .fbd_timers import _layout
 from .ladder_timers_counters import apply_pseudo
 from .registry import implements, prescan
@@ -130,7 +131,13 @@ def _begin(ctx: ExecContext, rung: bool, c: list, channel: int) -> bool:
 
 
 def _size(v: object) -> tuple[int, int | None]:
-    """(capacity in characters, a STRING's own LEN or None) of a source or destination."""
+    """(capacity in characters, a STRING's own LEN or None) of a source or destination: a
+    STRING, or the array walked from the given element (memory operand, an ArrayRef)."""
+    if isinstance(v, ArrayRef):
+        first = v.get(0) if len(v) > 0 else None
+        if isinstance(first, list):  # a STRING tag, or an element of a STRING array
+            return _size(first)
+        return (len(v) if v.dims else 1), None
     assert isinstance(v, list)
     if len(v) == 2 and isinstance(v[1], list):  # STRING-like: LEN, DATA[]
         return len(v[1]), int(v[0])
@@ -158,7 +165,7 @@ def handshake(
         c[A_DN] = 1
 
 
-def _write(ctx: ExecContext, rung: bool, ch: int, src: list, c: list, extra: int) -> None:
+def _write(ctx: ExecContext, rung: bool, ch: int, src: object, c: list, extra: int) -> None:
     if not _begin(ctx, rung, c, ch):
         return
     size, own = _size(src)
@@ -171,17 +178,17 @@ def _write(ctx: ExecContext, rung: bool, ch: int, src: list, c: list, extra: int
 
 
 @implements("AWT")
-def awt(ctx: ExecContext, rung: bool, ch: int, src: list, c: list, *display: object) -> None:
+def awt(ctx: ExecContext, rung: bool, ch: int, src: object, c: list, *display: object) -> None:
     _write(ctx, rung, ch, src, c, 0)
 
 
 @implements("AWA")
-def awa(ctx: ExecContext, rung: bool, ch: int, src: list, c: list, *display: object) -> None:
+def awa(ctx: ExecContext, rung: bool, ch: int, src: object, c: list, *display: object) -> None:
     _write(ctx, rung, ch, src, c, APPEND_CHARS)
 
 
 @implements("ARD", "ARL")
-def read(ctx: ExecContext, rung: bool, ch: int, dest: list, c: list, *display: object) -> None:
+def read(ctx: ExecContext, rung: bool, ch: int, dest: object, c: list, *display: object) -> None:
     if not _begin(ctx, rung, c, ch):
         return
     if not 0 < c[A_LEN] <= _size(dest)[0]:
@@ -196,7 +203,13 @@ def read(ctx: ExecContext, rung: bool, ch: int, dest: list, c: list, *display: o
 
 @prescan("ARD", "ARL", "AWT", "AWA")
 def length_prescan(
-    ctx: ExecContext, rung: bool, ch: int, data: list, c: list, length: object = None, *rest: object
+    ctx: ExecContext,
+    rung: bool,
+    ch: int,
+    data: object,
+    c: list,
+    length: object = None,
+    *rest: object,
 ) -> None:
     apply_pseudo(c, ((A_LEN, length),))
     ctx.system.pop(_READS, None)  # a new run starts with an idle port

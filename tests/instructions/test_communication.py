@@ -133,3 +133,29 @@ def test_ascii_ladder_write_on_the_rising_edge(tmp_path: Path) -> None:
         (0, 1, 5, 5),
     ]
     assert report["diagnostics"] == []
+
+
+def test_ascii_ladder_arrays_and_acl_yes_no(tmp_path: Path) -> None:
+    src = (
+        "VAR rb : SINT[20]; tb : SINT[10]; rc, wc, bad, sc, cc : SERIAL_PORT_CONTROL;"
+        " s : STRING := 'HI'; END_VAR\n"
+        "ARD(0,rb[0],rc,5,?);\n"  # waits: 5 of the 20 SINTs
+        "AWT(0,tb[2],wc,4,?);\n"  # 4 characters from tb[2..5]
+        "AWT(0,tb[2],bad,9,?);\n"  # only 8 elements from tb[2]
+        "AWT(0,s,sc,0,0);\n"  # LEN 0: the STRING's own 2 characters
+        "ACB(0,cc,?);\n"
+        "XIC(rc.RN)ACL(0,Yes,No);\n"  # clears the waiting read in the same scan
+    )
+    watch = ["rc.RN", "rc.ER", "wc.DN", "wc.POS", "bad.ER", "sc.POS", "cc.DN", "cc.POS"]
+    rows, report = trace(tmp_path, src, ".rll", 1, watch)
+    assert {k: int(rows[0][k]) for k in watch} == {
+        "rc.RN": 0,
+        "rc.ER": 1,
+        "wc.DN": 1,
+        "wc.POS": 4,
+        "bad.ER": 1,
+        "sc.POS": 2,
+        "cc.DN": 1,
+        "cc.POS": 0,
+    }
+    assert report["diagnostics"] == []
