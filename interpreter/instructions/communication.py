@@ -3,14 +3,16 @@
 SPEC 9.32 and decision 0035. Nothing in logixst answers a message or sends a character, so
 these instructions show what a controller shows when the far end is missing.
 
-MSG (1756-RM003), state in the MESSAGE's bits, advanced each time the instruction executes
-(ladder: true or false rung), in virtual time:
+MSG (1756-RM003), state in the MESSAGE's bits. The controller moves a message on by itself,
+asynchronously to the logic: logixst does it at the start of every scan (ctx.background) and
+when the instruction executes, in virtual time:
 - start (ladder: true rung with EN clear; ST: EN clear, or DN/ER set from the last run):
   EN and EW set, ST DN ER cleared, ERR EXERR DN_LEN zeroed, the time remembered.
 - a later execution: the request has been sent: EW cleared, ST set.
 - once UnconnectedTimeout (microseconds; 0 or negative: the 30 s default) has passed since
   the start: ST cleared, ER set, ERR = connection failure 16#0001 and EXERR = unconnected
   request timed out 16#0204 (numbers from the MSG_ERR / MSG_EXERR catalog enumerations).
+- the program setting TO stops a pending message: ER (ERR left 0).
 - ladder false rung: EN is cleared once DN or ER is set; a pending message keeps running.
 
 ASCII (1756-RM003 ASCII chapter). Channel 0 is the controller's serial port; another channel
@@ -45,7 +47,7 @@ from .registry import implements, prescan
 _M = _layout("MESSAGE")
 M_EW, M_ER, M_DN, M_ST, M_EN = _M["EW"], _M["ER"], _M["DN"], _M["ST"], _M["EN"]
 M_ERR, M_EXERR, M_DN_LEN = _M["ERR"], _M["EXERR"], _M["DN_LEN"]
-M_TIMEOUT, M_SENT = _M["UNCONNECTEDTIMEOUT"], _M["SENTTIME"]
+M_TIMEOUT, M_SENT, M_TO = _M["UNCONNECTEDTIMEOUT"], _M["SENTTIME"], _M["TO"]
 
 DEFAULT_TIMEOUT_MS = 30_000.0  # UnconnectedTimeout's documented default, 30 s
 
@@ -60,16 +62,40 @@ CONNECTION_FAILURE = _code("MSG_ERR", "Connection failure")
 UNCONNECTED_TIMEOUT = _code("MSG_EXERR", "Unconnected request timed out")
 
 
+class _Transfers:
+    """The messages in progress; the controller moves them on at the start of every scan
+    whether or not the program executes their MSG again (the bits change asynchronously)."""
+
+    __slots__ = ("pending",)
+
+    def __init__(self) -> None:
+        self.pending: list[list] = []
+
+    def __call__(self, ctx: ExecContext) -> None:
+        for m in list(self.pending):
+            _msg_advance(ctx, m)
+            if not m[M_EN] or m[M_DN] or m[M_ER]:
+                self.pending.remove(m)
+
+
 def _msg_start(ctx: ExecContext, m: list) -> None:
     m[M_EN] = m[M_EW] = 1
     m[M_ST] = m[M_DN] = m[M_ER] = 0
     m[M_ERR] = m[M_EXERR] = m[M_DN_LEN] = 0
     m[M_SENT] = ctx.now_ms
+    transfers = ctx.background.setdefault("MSG", _Transfers())
+    if not any(p is m for p in transfers.pending):
+        transfers.pending.append(m)
 
 
 def _msg_advance(ctx: ExecContext, m: list) -> None:
-    """Move a pending message on: sent after its first scan, failed after the timeout."""
+    """Move a pending message on: sent after its first scan, failed after the timeout or
+    when the program sets TO."""
     if not m[M_EN] or m[M_DN] or m[M_ER]:
+        return
+    if m[M_TO]:  # the program stops the message: ER (the manual gives no code for it)
+        m[M_EW] = m[M_ST] = 0
+        m[M_ER] = 1
         return
     elapsed = ctx.now_ms - m[M_SENT]
     if elapsed <= 0:

@@ -12,6 +12,9 @@ of higher priority than the task executing the EVENT runs at once, inside the in
 any other waits until the triggering task has finished its programs. A trigger while the
 event task is waiting or running is an overlap: it is counted and dropped. The clock does
 not move while an event task runs.
+
+Before the tasks, the controller's background work runs (ctx.background: message transfers
+that progress without the program executing their instruction, decision 0035).
 """
 
 from __future__ import annotations
@@ -85,6 +88,8 @@ class Schedule:
     def run(self, T: list, ctx: Any) -> None:
         self.T = T
         ctx.tasks = self
+        for work in list(ctx.background.values()):  # communication finishing on its own
+            work(ctx)
         now = ctx.now_ms
         for task in self.periodic:
             while task.next_due <= now + EPS:

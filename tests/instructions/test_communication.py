@@ -159,3 +159,49 @@ def test_ascii_ladder_arrays_and_acl_yes_no(tmp_path: Path) -> None:
         "cc.POS": 0,
     }
     assert report["diagnostics"] == []
+
+
+def test_msg_progresses_without_being_executed_again(tmp_path: Path) -> None:
+    # ST executes MSG once (EN guards it); the transfer still moves on every scan and
+    # fails once the 30 ms timeout has passed; EN stays set (ST has no false rung)
+    src = (
+        "VAR m : MESSAGE; END_VAR\n"
+        "m.UnconnectedTimeout := 30000;\nIF NOT m.EN THEN MSG(m); END_IF;\n"
+    )
+    rows, _ = trace(tmp_path, src, ".st", 5, MSG_BITS, period_ms=10.0)
+    got = [tuple(int(r[k]) for k in MSG_BITS) for r in rows]
+    failed = (1, 0, 0, 0, 1, 1, 0x204)
+    assert got == [
+        (1, 1, 0, 0, 0, 0, 0),
+        (1, 0, 1, 0, 0, 0, 0),
+        (1, 0, 1, 0, 0, 0, 0),
+        failed,
+        failed,
+    ]
+
+
+def test_msg_on_a_one_shot_rung_clears_en_when_it_fails(tmp_path: Path) -> None:
+    src = (
+        "VAR m : MESSAGE; o : BOOL; n : DINT; go : BOOL; END_VAR\n"
+        "MOV(20000,m.UnconnectedTimeout)ADD(n,1,n);\nGEQ(n,2)OTE(go);\nXIC(go)ONS(o)MSG(m);\n"
+    )
+    rows, _ = trace(tmp_path, src, ".rll", 5, MSG_BITS, period_ms=10.0)
+    got = [tuple(int(r[k]) for k in MSG_BITS) for r in rows]
+    # t 10 rising edge: queued; t 20 sent; t 30 failed: the false rung then clears EN at once
+    assert got == [
+        (0, 0, 0, 0, 0, 0, 0),
+        (1, 1, 0, 0, 0, 0, 0),
+        (1, 0, 1, 0, 0, 0, 0),
+        (0, 0, 0, 0, 1, 1, 0x204),
+        (0, 0, 0, 0, 1, 1, 0x204),
+    ]
+
+
+def test_msg_timeout_bit_stops_a_pending_message() -> None:
+    ctx, m = ExecContext(), new_struct("MESSAGE")
+    cm.msg_ladder(ctx, True, m)
+    m[M["TO"]] = 1
+    ctx.now_ms = 5.0
+    for work in ctx.background.values():
+        work(ctx)
+    assert (m[M["EN"]], m[M["ST"]], m[M["ER"]], m[M["ERR"]]) == (1, 0, 1, 0)
