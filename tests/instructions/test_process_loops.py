@@ -225,3 +225,28 @@ def test_pid_cascade_slave_takes_sp_from_master() -> None:
     pl.pid(ExecContext(), True, slave, 50.0, 0, Ref(cell, 0, REAL), master, 0, 0)
     # SP = 40 % of 0..200 = 80; E = 30 EU = 15 % -> OUT 15
     assert slave[P["SP"]] == 80.0 and cell[0] == pytest.approx(15.0)
+
+
+def test_tank_sample_settles_at_the_setpoint() -> None:
+    # samples/tank_pid.st: a PI loop on an integrating tank settles with no offset, where
+    # filling (valve x 10 %/s) equals the 4 %/s demand: level 60 %, valve 40 %. The Low alarm
+    # fired once at the start (level 5 % < 20 %); the report MSG failed after its 30 s.
+    import io
+    import json
+    from contextlib import redirect_stdout
+
+    from interpreter.cli import main
+
+    sample = Path(__file__).resolve().parents[2] / "samples" / "tank_pid.st"
+    watch = ["Level", "Valve", "LevelAlarm.LAlarmCount", "LevelAlarm.LInAlarm", "Report.ERR"]
+    argv = ["run", str(sample), "--scan-period", "100", "--duration", "60", "--json"]
+    for w in watch:
+        argv += ["--watch", w]
+    buf = io.StringIO()
+    with redirect_stdout(buf):
+        assert main(argv) == 0
+    tags = json.loads(buf.getvalue())["tags"]
+    assert tags["Level"] == pytest.approx(60.0, abs=0.05)
+    assert tags["Valve"] == pytest.approx(40.0, abs=0.1)
+    assert (tags["LevelAlarm.LAlarmCount"], tags["LevelAlarm.LInAlarm"]) == (1, False)
+    assert tags["Report.ERR"] == 1
