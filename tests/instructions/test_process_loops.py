@@ -250,3 +250,17 @@ def test_tank_sample_settles_at_the_setpoint() -> None:
     assert tags["Valve"] == pytest.approx(40.0, abs=0.1)
     assert (tags["LevelAlarm.LAlarmCount"], tags["LevelAlarm.LInAlarm"]) == (1, False)
     assert tags["Report.ERR"] == 1
+
+
+def test_pid_trusts_upd_not_the_time_between_executions(tmp_path: Path) -> None:
+    # The loop integrates KI x E x UPD per execution whatever the real period (RM003: run it
+    # at the UPD rate). UPD 0.1 s but 10 ms scans: after 10 scans (0.1 s of simulated time)
+    # I = 10 x 0.5 x 10 x 0.1 = 5, so OUT = 20 + 5 = 25, not the 20.5 that 0.1 s of real
+    # integral action would give.
+    src = (
+        "VAR p : PID; pv : REAL := 40.0; cv : REAL; END_VAR\n"
+        "MOV(2.0,p.KP)MOV(0.5,p.KI)MOV(0.1,p.UPD)MOV(50.0,p.SP);\n"
+        "PID(p,pv,0,cv,0,0,0);\n"
+    )
+    rows, _ = trace(tmp_path, src, ".rll", 10, ["cv"], period_ms=10.0)
+    assert float(rows[-1]["cv"]) == pytest.approx(25.0)
