@@ -28,6 +28,9 @@ match the rate the PID is executed at, as on the controller):
 - OUT is limited to MINO..MAXO (OLL / OLH) in every mode; in auto the integral term stops
   growing in the direction of a limit (no windup).
 - CV = OUT / 100 x (MAXCV - MINCV) + MINCV, converted to the CV's type.
+- A range whose two ends are equal is not configured and is not applied: a PID tag Studio
+  creates holds 0 in every member (real exports show it), so MINO = MAXO = 0 means no
+  output limits, MINCV = MAXCV CV = OUT, MINTIE = MAXTIE a tieback already in percent.
 - Alarms: PVHA above PVH until PV < PVH - PVDB, PVLA below PVL until PV > PVL + PVDB (when
   PVH > PVL); DVPA when PV - SP > DVP until below DVP - DVDB, DVNA when PV - SP < -|DVN|
   until above -|DVN| + DVDB (each only when its limit is not 0).
@@ -113,6 +116,9 @@ def _deadband(p: list, err: float) -> float:
 
 def _limit(p: list, out: float) -> float:
     hi, lo = p[P["MAXO"]], p[P["MINO"]]
+    if hi == lo:  # limits not configured (a new PID tag holds 0 and 0)
+        p[OLH] = p[OLL] = 0
+        return out
     p[OLH] = int(out > hi)
     p[OLL] = int(out < lo)
     return min(max(out, lo), hi)
@@ -182,7 +188,8 @@ def _pid(ctx: ExecContext, p: list, pv_raw: float, tieback: float, cv: Ref | Bit
         p[ITERM] = i_new
     p[P["OUT"]] = f32(out)
     p[INI] = 1
-    cv.set(out / 100.0 * (p[P["MAXCV"]] - p[P["MINCV"]]) + p[P["MINCV"]])
+    cv_range = _span(p[P["MINCV"]], p[P["MAXCV"]])
+    cv.set(out / 100.0 * cv_range + p[P["MINCV"]] if cv_range else out)
     _pv_alarms(p, pv)
 
 

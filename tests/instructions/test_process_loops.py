@@ -1,8 +1,8 @@
 """SCL and PID against hand-worked numbers (1756-RM006 SCL formula, 1756-RM003 PID equations).
 
-Decision 0031. PID numbers use the PID type's defaults unless set: MINS 0 / MAXS 100 and
-MINI 0 / MAXI 100 (so PV is unscaled and 1 EU is 1 % of span), MINCV 0 / MAXCV 100 (so CV
-equals OUT), MINO 0 / MAXO 100.
+Decision 0031. PID numbers use the values Studio's PID dialog proposes unless a test sets
+others: MINS 0 / MAXS 100 and MINI 0 / MAXI 100 (so PV is unscaled and 1 EU is 1 % of span),
+MINCV 0 / MAXCV 100 (so CV equals OUT), MINO 0 / MAXO 100.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from interpreter.instructions import process_loops as pl
 from interpreter.semantics.types import DINT, REAL
 from interpreter.vm.context import ExecContext
 from interpreter.vm.refs import Ref
+from interpreter.vm.values import f32
 from tests.instructions.run_cli import trace
 from tests.instructions.structs import new_struct, struct_type
 
@@ -34,6 +35,14 @@ def test_scl_maps_the_raw_range_linearly() -> None:
     # 2048 x 100 / 4095 = 50.01221...
     assert s[S["OUT"]] == pytest.approx(50.012210, rel=1e-6)
     assert (s[S["MAXALARM"]], s[S["MINALARM"]], s[S["STATUS"]], s[S["ENABLEOUT"]]) == (0, 0, 0, 1)
+
+
+def test_scl_matches_a_real_controller_snapshot() -> None:
+    # A SCALE tag exported from a running project (reh3376/acd-l5x-tool-lib, Mashing01 FBD
+    # program) holds In 183.42, raw 0..50000, EU 1..50000 and the controller's Out 184.41632:
+    # 183.42 x 49999 / 50000 + 1 = 184.4163...
+    s = _scl(In=f32(183.42), InRawMin=0.0, InRawMax=50000.0, InEUMin=1.0, InEUMax=50000.0)
+    assert s[S["OUT"]] == pytest.approx(184.41632, abs=1e-4)
 
 
 def test_scl_reversed_engineering_range() -> None:
@@ -71,7 +80,8 @@ def test_scl_through_run(tmp_path: Path) -> None:
 
 # ------------------------------------------------------------------ PID
 def _pid(**members: object) -> list:
-    return new_struct("PID", **members)
+    dialog: dict[str, object] = {"MAXS": 100.0, "MAXI": 100.0, "MAXO": 100.0, "MAXCV": 100.0}
+    return new_struct("PID", **(dialog | {"MAXTIE": 100.0} | members))
 
 
 def _exec(p: list, pv: float, ctx: ExecContext | None = None, cv_type=REAL) -> float:  # type: ignore[no-untyped-def]
@@ -264,3 +274,16 @@ def test_pid_trusts_upd_not_the_time_between_executions(tmp_path: Path) -> None:
     )
     rows, _ = trace(tmp_path, src, ".rll", 10, ["cv"], period_ms=10.0)
     assert float(rows[-1]["cv"]) == pytest.approx(25.0)
+
+
+def test_pid_new_tag_ranges_are_not_applied() -> None:
+    # every member 0 (as Studio creates the tag), UPD set: no scaling, no limits, CV = OUT
+    p = new_struct("PID", KP=20.0, UPD=0.1, SP=50.0)
+    # E = 50 - 40 = 10 -> OUT = 200, beyond 100 % but no limits are configured
+    assert _exec(p, 40.0) == 200.0 and (p[P["OLH"]], p[P["OLL"]]) == (0, 0)
+
+
+def test_pid_new_tag_without_update_time_faults() -> None:
+    ctx = ExecContext()
+    _exec(new_struct("PID", KP=2.0), 40.0, ctx)
+    assert [(f.type, f.code) for f in ctx.minor_faults.values()] == [(4, 35)]
