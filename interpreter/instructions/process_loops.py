@@ -31,9 +31,10 @@ match the rate the PID is executed at, as on the controller):
 - A range whose two ends are equal is not configured and is not applied: a PID tag Studio
   creates holds 0 in every member (real exports show it), so MINO = MAXO = 0 means no
   output limits, MINCV = MAXCV CV = OUT, MINTIE = MAXTIE a tieback already in percent.
-- Alarms: PVHA above PVH until PV < PVH - PVDB, PVLA below PVL until PV > PVL + PVDB (when
-  PVH > PVL); DVPA when PV - SP > DVP until below DVP - DVDB, DVNA when PV - SP < -|DVN|
-  until above -|DVN| + DVDB (each only when its limit is not 0).
+- Alarms, always evaluated: PVHA above PVH until PV < PVH - PVDB, PVLA below PVL until
+  PV > PVL + PVDB; DVPA when ERR > DVP until ERR < DVP - DVDB, DVNA when ERR < DVN (a
+  negative number) until ERR > DVN + DVDB. Real exports of running loops show these rules
+  (PVHA with PVH 0, DVPA/DVNA following ERR's sign under either control action).
 - UPD <= 0: minor fault 4/35 and the loop is not computed.
 - Ladder: a false rung clears EN and computes nothing. Prescan clears EN and INI.
 """
@@ -91,17 +92,16 @@ def _span(lo: float, hi: float) -> float | None:
     return hi - lo if hi != lo else None
 
 
-def _pv_alarms(p: list, pv: float) -> None:
-    if p[P["PVH"]] > p[P["PVL"]]:
-        hi, lo, db = p[P["PVH"]], p[P["PVL"]], max(0.0, p[P["PVDB"]])
-        p[PVHA] = int(pv > hi or (p[PVHA] and pv >= hi - db))
-        p[PVLA] = int(pv < lo or (p[PVLA] and pv <= lo + db))
-    else:
-        p[PVHA] = p[PVLA] = 0
-    dev, db = pv - p[P["SP"]], max(0.0, p[P["DVDB"]])
-    dvp, dvn = p[P["DVP"]], -abs(p[P["DVN"]])
-    p[DVPA] = int(dvp != 0 and (dev > dvp or (p[DVPA] and dev >= dvp - db)))
-    p[DVNA] = int(dvn != 0 and (dev < dvn or (p[DVNA] and dev <= dvn + db)))
+def _alarms(p: list, pv: float, err: float) -> None:
+    """PV alarms against PVH/PVL and deviation alarms of the error against DVP/DVN, each with
+    its deadband, always evaluated: real exports of loops with PVH = PVL = 0 show PVHA set
+    for a positive PV, and DVPA / DVNA following the sign of ERR (not PV - SP)."""
+    hi, lo, db = p[P["PVH"]], p[P["PVL"]], max(0.0, p[P["PVDB"]])
+    p[PVHA] = int(pv > hi or (bool(p[PVHA]) and pv >= hi - db))
+    p[PVLA] = int(pv < lo or (bool(p[PVLA]) and pv <= lo + db))
+    dvp, dvn, db = p[P["DVP"]], p[P["DVN"]], max(0.0, p[P["DVDB"]])
+    p[DVPA] = int(err > dvp or (bool(p[DVPA]) and err >= dvp - db))
+    p[DVNA] = int(err < dvn or (bool(p[DVNA]) and err <= dvn + db))
 
 
 def _deadband(p: list, err: float) -> float:
@@ -190,7 +190,7 @@ def _pid(ctx: ExecContext, p: list, pv_raw: float, tieback: float, cv: Ref | Bit
     p[INI] = 1
     cv_range = _span(p[P["MINCV"]], p[P["MAXCV"]])
     cv.set(out / 100.0 * cv_range + p[P["MINCV"]] if cv_range else out)
-    _pv_alarms(p, pv)
+    _alarms(p, pv, err)
 
 
 @implements("PID")

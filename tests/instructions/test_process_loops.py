@@ -185,20 +185,53 @@ def test_pid_scales_pv_and_cv() -> None:
 
 
 def test_pid_alarms_with_deadband() -> None:
-    p = _pid(UPD=0.1, SP=50.0, PVH=90.0, PVL=10.0, PVDB=2.0, DVP=20.0, DVN=20.0, DVDB=1.0)
+    p = _pid(UPD=0.1, SP=50.0, PVH=90.0, PVL=10.0, PVDB=2.0, DVP=20.0, DVN=-20.0, DVDB=1.0)
     seen = []
-    for pv in (91.0, 89.0, 87.9, 9.0, 11.5, 12.1):
+    for pv in (91.0, 89.0, 87.9, 9.0, 11.5, 12.1, 29.5, 30.0, 31.5):
         _exec(p, pv)
         seen.append((p[P["PVHA"]], p[P["PVLA"]], p[P["DVPA"]], p[P["DVNA"]]))
-    # PV - SP: 41 (DVPA), 39, 37.9, -41 (DVNA), -38.5, -37.9
+    # ERR = SP - PV: -41 (DVNA), -39, -37.9, 41 (DVPA), 38.5, 37.9, 20.5, 20, 18.5
+    # PVHA holds down to 88, PVLA up to 12; DVPA holds down to 19
     assert seen == [
-        (1, 0, 1, 0),
-        (1, 0, 1, 0),
-        (0, 0, 1, 0),
-        (0, 1, 0, 1),
-        (0, 1, 0, 1),
+        (1, 0, 0, 1),
+        (1, 0, 0, 1),
         (0, 0, 0, 1),
+        (0, 1, 1, 0),
+        (0, 1, 1, 0),
+        (0, 0, 1, 0),
+        (0, 0, 1, 0),
+        (0, 0, 1, 0),
+        (0, 0, 0, 0),
     ]
+
+
+def test_pid_matches_a_real_controller_snapshot() -> None:
+    # A PID exported from a running project (reh3376/acd-l5x-tool-lib, Cookers_PID_Logic,
+    # TCV_2025A): software manual, SO 0.05, input 50..250 scaled to 50..215, SP in use
+    # 199.98505 (DATA[4]), alarm limits all 0. The export shows PV 127.86931, ERR 72.11574,
+    # OUT 0.05, PVHA 1, PVLA 0, DVPA 1, DVNA 0 and SPOR 0 for that SP.
+    raw = (127.86931 - 50.0) / 0.825 + 50.0  # the input that scales to that PV
+    p = new_struct(
+        "PID",
+        SWM=1,
+        SO=0.05,
+        KP=7.5,
+        KI=2.0,
+        MAXS=215.0,
+        MINS=50.0,
+        MAXI=250.0,
+        MINI=50.0,
+        MAXO=99.0,
+        MINO=0.05,
+        UPD=0.25,
+        MAXCV=100.0,
+        MAXTIE=100.0,
+        SP=f32(199.98505),
+    )
+    assert _exec(p, raw) == pytest.approx(0.05)
+    assert p[P["PV"]] == pytest.approx(127.86931, abs=1e-4)
+    assert p[P["ERR"]] == pytest.approx(72.11574, abs=1e-4)
+    assert (p[P["PVHA"]], p[P["PVLA"]], p[P["DVPA"]], p[P["DVNA"]], p[P["SPOR"]]) == (1, 0, 1, 0, 0)
 
 
 def test_pid_zero_update_time_is_a_minor_fault() -> None:
