@@ -36,7 +36,7 @@ match the rate the PID is executed at, as on the controller):
   negative number) until ERR > DVN + DVDB. Real exports of running loops show these rules
   (PVHA with PVH 0, DVPA/DVNA following ERR's sign under either control action).
 - UPD <= 0: minor fault 4/35 and the loop is not computed.
-- Ladder: a false rung clears EN and computes nothing. Prescan clears EN and INI.
+- Ladder: a false rung clears EN and INI and computes nothing. Prescan clears EN and INI.
 """
 
 from __future__ import annotations
@@ -207,6 +207,7 @@ def pid(
 ) -> None:
     p[EN] = int(bool(rung))
     if not rung:
+        p[INI] = 0  # re-initialised when enabled again (exports of idle loops: EN 0, INI 0)
         return
     if not all(math.isfinite(float(v)) for v in (pv, tieback, inhold_value)):
         ctx.minor(4, 4, "PID: an input is not a finite number")

@@ -247,7 +247,7 @@ def test_pid_ladder_false_rung_clears_en(tmp_path: Path) -> None:
     _exec(p, 40.0)
     cell = [5.0]
     pl.pid(ExecContext(), False, p, 40.0, 0, Ref(cell, 0, REAL), None, 0, 0)
-    assert p[P["EN"]] == 0 and cell[0] == 5.0
+    assert (p[P["EN"]], p[P["INI"]]) == (0, 0) and cell[0] == 5.0
 
 
 def test_pid_ladder_through_run_at_the_update_time(tmp_path: Path) -> None:
