@@ -179,12 +179,12 @@ def test_alma_rate_of_change() -> None:
 
 
 def test_alma_minimum_duration_per_level() -> None:
-    ctx, a = ExecContext(), _analog(HMinDurationEnable=1, MinDurationPRE=200)
+    ctx, a = ExecContext(), _analog(HHMinDurationEnable=0, MinDurationPRE=200)
     seen = []
     for t in (0, 100, 200):
         _alma(ctx, a, t, 95.0)
         seen.append((_levels(a), a[A["MINDURATIONACC"]]))
-    # HH (no minimum duration) at once; H after 200 ms
+    # HH (its minimum duration turned off) at once; H (on by default) after 200 ms
     assert seen == [((1, 0, 0, 0), 0), ((1, 0, 0, 0), 100), ((1, 1, 0, 0), 0)]
 
 
