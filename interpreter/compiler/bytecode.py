@@ -15,6 +15,7 @@ Places:
 Values:
   CONST v type        push a constant
   SYS name            push a system flag (S:FS ...)
+  SETSYS (name, v)    set the controller flag `name` to v (ladder FOR/BRK: the break flag)
   LOAD type           pop place, push its value
   STORE type          pop value, pop place, convert the value to `type` and store it
                       (a structure or array value is copied element by element)
@@ -79,6 +80,7 @@ class Op(Enum):
     IBIT = "IBIT"
     CONST = "CONST"
     SYS = "SYS"
+    SETSYS = "SETSYS"
     LOAD = "LOAD"
     STORE = "STORE"
     REF = "REF"
