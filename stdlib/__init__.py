@@ -13,7 +13,9 @@ from pathlib import Path
 
 _ROOT = Path(__file__).parent
 
-OPERAND_FORMATS = frozenset({"tag", "immediate", "value", "array", "memory", "routine", "label"})
+OPERAND_FORMATS = frozenset(
+    {"tag", "immediate", "value", "array", "memory", "routine", "label", "task"}
+)
 OPERAND_DIRS = frozenset({"in", "out", "inout"})
 
 

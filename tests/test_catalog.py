@@ -61,6 +61,8 @@ INTRINSICS = {
     "CMP",
     "FAL",
     "FSC",
+    "FOR",
+    "BRK",
 }
 
 

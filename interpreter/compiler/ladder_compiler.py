@@ -266,6 +266,10 @@ class LadderCompiler(RoutineCompiler):
             self.when_true(depth, lambda: self.jump(_label(ops[0]), ins.span))
         elif name in ("TND", "RET", "JSR"):
             self.when_true(depth, lambda: self.program_control(name, list(ops), ins.span))
+        elif name == "FOR":
+            self.when_true(depth, lambda: self.ladder_for(list(ops), ins.span))
+        elif name == "BRK":
+            self.when_true(depth, self.brk)
         elif name in ("FAL", "FSC"):
             self.file_op(name, ins, depth)
         elif unimplemented(cat, "rll"):
@@ -275,6 +279,50 @@ class LadderCompiler(RoutineCompiler):
         else:
             count = self.operands(self.as_call(ins), cat)
             self.emit(Op.RCALL, (cat.key, count), ins.span)
+
+    def ladder_for(self, ops: list[n.Expr], span: n.Span) -> None:
+        """FOR(Routine, Index, Initial, Terminal, Step): the routine runs while Index has not
+        passed Terminal (above it for Step >= 0, below it for Step < 0), Index += Step after
+        each pass; Terminal and Step are read before every pass, as the tags may change. A
+        BRK in the routine sets the break flag and returns: the loop ends (decision 0033)."""
+        target, index, initial, terminal, step = ops
+        assert isinstance(target, n.Name)
+        routine = self.model.routine(target.ident, self.r.program_name)
+        assert routine is not None  # the checker reported an unknown routine (E124)
+        self.place(index)
+        self.value(initial, DINT)
+        self.emit(Op.STORE, DINT, span)
+        self.emit(Op.LOOP)
+        self.emit(Op.STEP, (1, True), span)  # every pass counts for the watchdog (SPEC 9.4)
+        # (Step >= 0 AND Index <= Terminal) OR (Step < 0 AND Index >= Terminal)
+        for rel, idx_rel in ((">=", "<="), ("<", ">=")):
+            self.value(step, DINT)
+            self.emit(Op.CONST, (0, DINT))
+            self.emit(Op.CMP, (rel, DINT))
+            self.value(index, DINT)
+            self.value(terminal, DINT)
+            self.emit(Op.CMP, (idx_rel, DINT))
+            self.emit(Op.BIN, ("AND", BOOL))
+        self.emit(Op.BIN, ("OR", BOOL))
+        self.emit(Op.BREAK_IFNOT)
+        self.emit(Op.SETSYS, ("BRK", 0))
+        self.emit(Op.JSR, routine.name, span)
+        self.emit(Op.SYS, "BRK")
+        self.emit(Op.IF)
+        self.emit(Op.SETSYS, ("BRK", 0))
+        self.emit(Op.BREAK)
+        self.emit(Op.END)
+        self.place(index)
+        self.value(index, DINT)
+        self.value(step, DINT)
+        self.emit(Op.BIN, ("+", DINT))
+        self.emit(Op.STORE, DINT, span)
+        self.emit(Op.END)
+
+    def brk(self) -> None:
+        """BRK: end the routine a FOR called and tell the FOR to stop (decision 0033)."""
+        self.emit(Op.SETSYS, ("BRK", 1))
+        self.emit(Op.RETURN)
 
     def as_call(self, ins: n.LadderInstr) -> n.Call:
         return n.Call(

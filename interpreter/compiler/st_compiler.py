@@ -232,7 +232,7 @@ class RoutineCompiler:
             if id(e) in self.a.enum_of:
                 self.emit(Op.CONST, (self.a.enum_of[id(e)], DINT))
                 continue
-            if op.format == "routine":
+            if op.format in ("routine", "task"):
                 self.emit(Op.CONST, (e.ident if isinstance(e, n.Name) else "", None))
                 continue
             if op.nullable and const_number(e) == 0:

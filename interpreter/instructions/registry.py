@@ -55,6 +55,8 @@ LOWERED = frozenset(
         "CMP",
         "FAL",
         "FSC",
+        "FOR",
+        "BRK",
     }
 )
 

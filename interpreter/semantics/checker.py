@@ -211,7 +211,7 @@ class _OperandCheck:
         fmt = op.format
         special = (
             op.enum is not None
-            or fmt in ("routine", "label", "array")
+            or fmt in ("routine", "label", "array", "task")
             or op.nullable
             or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
             or op.types == ("MODULE",)
@@ -916,6 +916,8 @@ class Checker(LadderChecks):
         ):
             if int_literal_for_real(e, t, op.types) and op.dir == "in":
                 return  # SPEC 9.15: integer literals are accepted for REAL operands
+            if "BOOL" in op.types and const_number(e) in (0, 1) and not is_tag:
+                return  # an immediate 0/1 for a BOOL operand (PID Inhold bit, ALMD ProgAck)
             if op.expression and "BOOL" in op.types and isinstance(const_number(e), int):
                 return  # FSC(..., 0): a constant condition, as Studio accepts (decision 0054)
             if any(x == "AXIS" for x in op.types) or is_axis(t):
@@ -974,6 +976,9 @@ class Checker(LadderChecks):
             return True
         if fmt == "label":
             return True
+        if fmt == "task":
+            self.task_operand(e)
+            return True
         if (
             ins.name in ("GSV", "SSV")
             and op.name == "InstanceName"
@@ -997,6 +1002,16 @@ class Checker(LadderChecks):
             self.array_operand(ins, op, e)
             return True
         return False
+
+    def task_operand(self, e: n.Expr) -> None:
+        """EVENT's Task: a task of the project (a lone routine file has no tasks to check)."""
+        if not isinstance(e, n.Name):
+            self.err("E124", "EVENT needs a task name", e.span)
+            return
+        tasks = self.model.tasks
+        if tasks and not any(t.name.upper() == e.ident.upper() for t in tasks):
+            names = [t.name for t in tasks]
+            self.err("E124", f"no task named '{e.ident}'{self.suggest(e.ident, names)}", e.span)
 
     def array_operand(self, ins: Instruction, op: Operand, e: n.Expr) -> None:
         base = e.base if isinstance(e, n.Index) else e

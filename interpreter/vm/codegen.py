@@ -381,6 +381,9 @@ class Translator:
             st.append(
                 _Val("ctx.first_scan" if arg == "FS" else f"ctx.status.get({arg!r}, 0)", BOOL)
             )
+        elif op is Op.SETSYS:
+            name, value = arg
+            self.line(f"ctx.status[{name!r}] = {int(value)}")
         elif op is Op.LOAD:
             p = self.pop_place()
             if p.bit is not None:

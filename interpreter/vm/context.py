@@ -41,6 +41,10 @@ class ExecContext:
     minor_faults: dict[tuple[int, int, int], MinorFault] = field(default_factory=dict)
     motion: Any = None  # the motion runtime (interpreter.runtime.motion), when present
     program: Any = None  # the loaded program (tags, types, routines)
+    tasks: Any = None  # the task scheduler (runtime/tasks.py), for EVENT to trigger a task
+    # Work the controller does on its own between scans, by name (MSG transfers in progress):
+    # each is called with the context at the start of every scan.
+    background: dict[str, Any] = field(default_factory=dict)
     status: dict[str, int] = field(default_factory=dict)  # S:N S:Z S:V S:C ...
     rv: list[Any] | None = None  # values the last RET handed back to its JSR (None: no RET)
     system: dict[str, Any] = field(default_factory=dict)  # attributes set by SSV (clock offset ...)

@@ -90,7 +90,7 @@ def test_scopes_jsr_tasks_and_aoi(capsys: pytest.CaptureFixture[str]) -> None:
     assert tags["Shared"] == 16
     # Every10 (periodic, 10 ms) is due at t = 0, 10, 20 within scans at t = 0..24 ms.
     assert tags["Program:Fast.Runs"] == 3 and tags["Ticks"] == 3
-    # Scale(Sc, 1.5, Result, Counted): Out = In * Gain = 1.5 * 2.0; Total is InOut and gains
+    # Gained(Sc, 1.5, Result, Counted): Out = In * Gain = 1.5 * 2.0; Total is InOut and gains
     # (N - Calls) + 1 a call, where the alias parameter N is the local Calls: +1, not +2.
     assert tags["Program:MainProgram.Result"] == 3.0
     assert tags["Program:MainProgram.Sc.Out"] == 3.0

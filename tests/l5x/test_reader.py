@@ -61,8 +61,8 @@ def test_tasks_and_programs() -> None:
 def test_st_spans_point_into_the_file() -> None:
     p, _ = read("st_project.L5X")
     main = p.programs[0].routines[0]
-    stmt = main.body[2]  # Scale(Sc, 1.5, Result, Counted);
-    line = line_of("st_project.L5X", "Scale(Sc, 1.5")
+    stmt = main.body[2]  # Gained(Sc, 1.5, Result, Counted);
+    line = line_of("st_project.L5X", "Gained(Sc, 1.5")
     assert isinstance(stmt, n.CallStmt)
     # `<![CDATA[` takes columns 1-9, so the statement starts in column 10.
     assert (stmt.span.line, stmt.span.col) == (line, 10)
