@@ -55,6 +55,8 @@ _REGEX_WORDS = {
     ),
     "UNSUPPORTED_KW": ("RETURN", "GOTO", "CONTINUE"),
 }
+# Tokens that can end an operand: a '.' after one is member or bit access.
+_OPERAND_END = frozenset({"NAME", "QNAME", "MEMBER_NAME", "INT", "RSQB", "RPAR"})
 _LABEL_AFTER = re.compile(r"[ \t\r\n]*:(?![=A-Za-z0-9_])")
 
 
@@ -192,6 +194,11 @@ class StLexer(Lexer):
                     ttype = "NAME"
             elif kind == "O":
                 ttype = ops[value]
+            elif kind == "REAL" and value[0] == "." and not self._real_here(accepts, last):
+                # `d.5`, `a.5e3`: after an operand '.' is member or bit access, not `.5`
+                stop = start + 1
+                value = "."
+                ttype = ops["."]
             else:
                 ttype = str(kind)
             col = start - line_start + 1
@@ -202,6 +209,13 @@ class StLexer(Lexer):
                 counter.char_pos, counter.line, counter.line_start_pos = stop, line, line_start
                 counter.column = stop - line_start + 1
             yield tok
+
+    @staticmethod
+    def _real_here(accepts: Callable[[], Any] | None, last: Token | None) -> bool:
+        """Whether a leading-dot REAL (`.5`) may stand here, as lark's contextual lexer decides."""
+        if accepts is not None:
+            return "REAL" in accepts()
+        return last is None or last.type not in _OPERAND_END
 
     @staticmethod
     def _skip_ws(text: str, pos: int, end: int) -> int:

@@ -51,6 +51,9 @@ SNIPPETS = {
     # Empty operands in an instruction call statement (the checker decides where they are allowed).
     "empty_operands": "VAR dt : DINT[7]; END_VAR GSV(WallClockTime,,LocalDateTime,dt[0]);\n"
     "SSV( WallClockTime , , LocalDateTime , dt[0] ); NOP(); COP(dt[0],,1); f(,); g(a := 1,);",
+    # REALs with the point first or last; `.` after an operand stays member or bit access.
+    "real_points": "VAR q : ARRAY[0..5] OF REAL; END_VAR a [:=] .5; b := 5. * -.25e1 + d.5;"
+    "c := a.b.3 + d.[i] + v[1].2 + f(.5, 1.); CASE k OF 1..5, -.5..-.25: x := .1; END_CASE;",
     "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
