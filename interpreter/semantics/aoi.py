@@ -22,6 +22,7 @@ from stdlib import Instruction, Operand, catalog
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
 from ..syntax.l5x import AoiDecl
+from .alias import AliasRequest, resolve_aliases
 from .ladder_check import rung_instructions
 from .program import Tag, const_number, resolve_typeref
 from .types import BOOL, ArrayType, DataType, Elementary, StructType, TypeTable
@@ -137,30 +138,7 @@ def _define(
             if value is not None:
                 st.defaults[key] = value
             aoi.tags[key] = Tag(lname, t, sp, path, d.init, slot=0, access=(idx,), init_path=path)
-    for a in decl.aliases:  # an alias parameter names a local tag (or one of its members)
-        target = aoi.tags.get(a.target.split(".")[0].upper())
-        at: DataType | None = target.type if target is not None else None
-        path_: list[int] = list(target.access) if target is not None else []
-        for part in a.target.split(".")[1:]:
-            m = at.member(part) if isinstance(at, StructType) else None
-            if m is None:
-                at = None
-                break
-            path_.append(m[0])
-            at = m[1]
-        if target is None or at is None or a.name.upper() in aoi.tags:
-            diags.append(
-                diag(
-                    "U305",
-                    f"alias parameter '{a.name}' for '{a.target}' cannot be simulated",
-                    path,
-                    a.span,
-                )
-            )
-            continue
-        aoi.tags[a.name.upper()] = Tag(
-            a.name, at, a.span, path, slot=target.slot, access=tuple(path_), alias_of=target
-        )
+    _alias_params(types, aoi, decl, path, diags)
     for r in decl.routines:
         aoi.routines[r.name.upper()] = r
     if "LOGIC" not in aoi.routines and decl.routines:
@@ -178,6 +156,36 @@ def _define(
         family="aoi",
     )
     return aoi
+
+
+def _alias_params(
+    types: TypeTable, aoi: Aoi, decl: AoiDecl, path: str, diags: list[Diagnostic]
+) -> None:
+    """Alias parameters name a local tag, one of its members or bits (semantics/alias.py).
+
+    An alias of a whole local tag is also that member of the instance seen from outside
+    (`Tank.Level` reads the local tag `Acc`); the instance has no place of its own for an
+    alias of a member or a bit.
+    """
+    requests: dict[str, AliasRequest] = {}
+    for a in decl.aliases:
+        key = a.name.upper()
+        if key in aoi.tags or key in requests:
+            diags.append(diag("E117", f"parameter '{a.name}' is already declared", path, a.span))
+            continue
+        requests[key] = AliasRequest(a.name, a.target, a.span)
+
+    def lookup(ident: str, program: str | None) -> Tag | AliasRequest | None:
+        return aoi.tags.get(ident.upper()) or requests.get(ident.upper())
+
+    resolved = resolve_aliases(list(requests.values()), lookup, path, diags)
+    for key, req in requests.items():
+        tag = resolved.get(id(req))
+        if tag is None:
+            continue
+        aoi.tags[key] = tag
+        if len(tag.access) == 1 and tag.bit is None and key not in aoi.type.index:
+            aoi.type.index[key] = tag.access[0]  # the local tag's member position
 
 
 def _operand(p: AoiParam) -> Operand:
