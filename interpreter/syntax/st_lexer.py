@@ -42,7 +42,11 @@ _REGEX_TERMINALS = {
     "STRING_LIT",
     "VAR_KW",
     "UNSUPPORTED_KW",
+    "PROGRAM",
+    "_TYPE",
 }
+# Keyword terminals that are keywords only where their regex's lookahead holds (st.lark).
+_LOOKAHEAD_WORDS = {"PROGRAM": "PROGRAM", "_TYPE": "TYPE"}
 _REGEX_WORDS = {
     "VAR_KW": (
         "VAR",
@@ -87,6 +91,11 @@ class StLexer(Lexer):
             for w in words:
                 assert pattern.fullmatch(w), (tname, w)
                 self.keywords[w] = tname
+        # the keyword's own regex decides, at the word's position, where it has a lookahead
+        self.lookahead: dict[str, re.Pattern[str]] = {}
+        for tname, w in _LOOKAHEAD_WORDS.items():
+            self.keywords[w] = tname
+            self.lookahead[tname] = re.compile(by_name[tname].pattern.to_regexp(), re.IGNORECASE)
         self.hard = {w for w in self.keywords if not name_re.fullmatch(w)}
         self.ops = ops
         op_alts = "|".join(re.escape(o) for o in sorted(ops, key=len, reverse=True))
@@ -175,6 +184,8 @@ class StLexer(Lexer):
                 ttype = keywords.get(upper)
                 if ttype is not None:
                     if upper not in hard and accepts is not None and ttype not in accepts():
+                        ttype = "NAME"
+                    elif ttype in self.lookahead and not self.lookahead[ttype].match(text, start):
                         ttype = "NAME"
                 elif ":" in value:
                     if accepts is not None and "QNAME" not in accepts():

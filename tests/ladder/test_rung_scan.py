@@ -77,6 +77,8 @@ SCANNED = [
     "MOV(.25,r)MOV(1.,x)MOV(-.5,y)MOV(-5.,z);",
     "CPT(x,y*.6)CPT(x,.5+2.*a.5)CPT(x,d.5-.5)CPT(x,v[1].3*.1);",
     "CPT(x,(5.)/(.5))CPT(x,f(.5,1.));",
+    # IEC declaration words are not Logix keywords: names in a rung (real exports)
+    "GSV(PROGRAM,THIS,LASTSCANTIME,t)SIZE(array[0],0,n)MOV(Type.Struct,end_type);",
 ]
 
 # Texts only the grammar reads: the scanner must give up (and the grammar then parses them).

@@ -169,6 +169,21 @@ def test_reals_with_the_point_first_or_last(st) -> None:
     assert t["z"] == 0.125  # DINT 3 matches no label of the REAL range: ELSE
 
 
+def test_iec_header_words_are_names_in_logix_code(st) -> None:
+    # Logix does not reserve PROGRAM, ARRAY, TYPE or STRUCT: real exports call GSV with the
+    # class `Program` and name tags `array` (decision 0046); in our header they stay keywords.
+    src = """
+    TYPE Pair : STRUCT a, b : DINT; END_STRUCT END_TYPE
+    VAR array : ARRAY[0..2] OF DINT; type : Pair; struct : DINT; END_VAR
+    type.a := 4; type.b := 5;
+    array[1] := type.a * type.b;
+    struct := array[1] + 1;
+    """
+    t = st.tags(src, "array[1]", "struct")
+    assert t["array[1]"] == 20  # 4 * 5
+    assert t["struct"] == 21
+
+
 def test_bool_literals(st) -> None:
     src = """
     VAR a, b, c, d : BOOL := TRUE; END_VAR
