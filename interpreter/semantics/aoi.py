@@ -52,6 +52,11 @@ class Aoi:
     required: list[AoiParam] = field(default_factory=list)  # call operands after the instance
     routines: dict[str, n.Routine] = field(default_factory=dict)  # LOGIC, PRESCAN, ...
     edges: dict[int, int] = field(default_factory=dict)  # id(ladder instruction) -> hidden member
+    # alias parameters of a member or bit of a local tag, seen from outside: (instance
+    # member, the local place's access path, bit); runtime/aoi.py keeps the two in step
+    mirrors: list[tuple[int, tuple[int, ...], tuple[int, Elementary] | None]] = field(
+        default_factory=list
+    )
 
 
 def define_aoi(
@@ -163,9 +168,11 @@ def _alias_params(
 ) -> None:
     """Alias parameters name a local tag, one of its members or bits (semantics/alias.py).
 
-    An alias of a whole local tag is also that member of the instance seen from outside
-    (`Tank.Level` reads the local tag `Acc`); the instance has no place of its own for an
-    alias of a member or a bit.
+    Inside the logic the alias reaches the local tag's storage. From outside, an alias of a
+    whole local tag is that member of the instance (`Tank.Level` reads the local tag `Acc`).
+    An alias of a member or a bit (`Sts_Running` for `_bSts.0`) gets an instance member of
+    its own that the call copies into the local place before the logic and back after it,
+    so between calls the outside sees and sets what the logic sees (runtime/aoi.py).
     """
     requests: dict[str, AliasRequest] = {}
     for a in decl.aliases:
@@ -184,8 +191,16 @@ def _alias_params(
         if tag is None:
             continue
         aoi.tags[key] = tag
-        if len(tag.access) == 1 and tag.bit is None and key not in aoi.type.index:
+        if key in aoi.type.index:
+            continue
+        if len(tag.access) == 1 and tag.bit is None:
             aoi.type.index[key] = tag.access[0]  # the local tag's member position
+        else:
+            aoi.mirrors.append((len(aoi.type.members), tag.access, tag.bit))
+            types.add_member(aoi.type, req.name, tag.type)
+            host = aoi.type.defaults.get(aoi.type.members[tag.access[0]][0].upper())
+            if tag.bit is not None and len(tag.access) == 1 and isinstance(host, int):
+                aoi.type.defaults[key] = (host >> tag.bit[0]) & 1  # the local's default bit
 
 
 def _operand(p: AoiParam) -> Operand:

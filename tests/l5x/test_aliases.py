@@ -86,12 +86,48 @@ def test_reads_and_writes_through_aliases_reach_the_base(
 
 
 def test_alias_parameters_of_an_add_on_instruction(capsys: pytest.CaptureFixture[str]) -> None:
-    # Fill: Step (alias of Cfg.Cmd) := 10; Level (alias of Acc) += Cfg.Cmd;
-    # Full (alias of Status.0) := Level >= 20; Out := Status.
-    tags = run(capsys, ALIASES, 1, "Tank.Level", "Tank.Out")
-    assert tags == {"Tank.Level": 10, "Tank.Out": 0}  # 10 < 20: Full, and so Status, is 0
-    tags = run(capsys, ALIASES, 2, "Tank.Level", "Tank.Out")
-    assert tags == {"Tank.Level": 20, "Tank.Out": 1}  # 20 >= 20 sets bit 0 of Status: 1
+    # Fill: IF Step (alias of Cfg.Cmd) = 0 THEN Step := 10; Level (alias of Acc) += Cfg.Cmd;
+    # Full (alias of Status.0) := Level >= 20; Out := Status. Ready is Flags.2, Flags = 4.
+    watch = ("Tank.Level", "Tank.Full", "Tank.Step", "Tank.Out", "Tank.Ready")
+    tags = run(capsys, ALIASES, 0, *watch)
+    # before any scan: the local defaults, seen through the aliases (4 = 2#100: bit 2 set)
+    assert tags == {
+        "Tank.Level": 0,
+        "Tank.Full": False,
+        "Tank.Step": 0,
+        "Tank.Out": 0,
+        "Tank.Ready": True,
+    }
+    tags = run(capsys, ALIASES, 1, *watch)
+    # Step was 0, so 10; Level = 0 + 10 = 10 < 20: Full and Status stay 0
+    assert tags == {
+        "Tank.Level": 10,
+        "Tank.Full": False,
+        "Tank.Step": 10,
+        "Tank.Out": 0,
+        "Tank.Ready": True,
+    }
+    tags = run(capsys, ALIASES, 2, *watch)
+    # Level = 20 >= 20 sets Full, bit 0 of Status: Out = 1
+    assert tags == {
+        "Tank.Level": 20,
+        "Tank.Full": True,
+        "Tank.Step": 10,
+        "Tank.Out": 1,
+        "Tank.Ready": True,
+    }
+
+
+def test_an_alias_parameter_set_from_outside_reaches_the_local_tag(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # --set Tank.Step=5 writes Cfg.Cmd through the alias: Level grows 5 a scan,
+    # 3 scans give 15 < 20 (Full false), 4 scans give 20 (Full true)
+    watch = ("Tank.Level", "Tank.Full", "Tank.Step")
+    tags = run(capsys, ALIASES, 3, *watch, extra=("--set", "Tank.Step=5"))
+    assert tags == {"Tank.Level": 15, "Tank.Full": False, "Tank.Step": 5}
+    tags = run(capsys, ALIASES, 4, *watch, extra=("--set", "Tank.Step=5"))
+    assert tags == {"Tank.Level": 20, "Tank.Full": True, "Tank.Step": 5}
 
 
 def test_set_through_an_alias_writes_the_base(capsys: pytest.CaptureFixture[str]) -> None:
