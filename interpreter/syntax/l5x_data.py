@@ -88,9 +88,11 @@ def parse_value(text: str, radix: str, dtype: str) -> int | float | None:
     if up.startswith(("DT#", "LDT#")):
         return parse_date_time(t)
     if dtype in ("REAL", "LREAL") or radix in ("Float", "Exponential"):
-        if "INF" in up:
+        # v17-v20 exports print non-finite REALs the C runtime's way: `1.#QNAN`, `-1.#IND`
+        # (NaN) and `1.$` (+INF, the raw bytes 16#7F80_0000 show it; decision 0045)
+        if "INF" in up or up.endswith(".$"):
             return -math.inf if up.startswith("-") else math.inf
-        if "NAN" in up:
+        if "NAN" in up or "#IND" in up:
             return math.nan
         try:
             return float(t)

@@ -8,12 +8,13 @@ year passed), times 86,400 s, plus the time of day, in microseconds (DT#) or nan
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
 
 from interpreter.cli import main
-from interpreter.syntax.l5x_data import parse_date_time
+from interpreter.syntax.l5x_data import parse_date_time, parse_value
 
 FIXTURE = Path(__file__).parent / "fixtures" / "tag_data.L5X"
 
@@ -94,3 +95,13 @@ def test_parse_date_time_forms() -> None:
     assert parse_date_time("DT#1970-13-01-00:00:00.000_000Z") is None  # no month 13
     assert parse_date_time("DT#1970-01-01-00:00:00.000_000_1Z") is None  # 7 digits for DT#
     assert parse_date_time("DT#yesterday") is None
+
+
+def test_non_finite_reals_as_v17_exports_print_them() -> None:
+    # LD_Scale_Value.L5X (v17): raw bytes 16#7F80_0000 (+INF) are shown as `1.$`,
+    # 16#FFC0_0000 (a NaN) as `-1.#IND`, 16#7F80_0001 (a NaN) as `1.#QNAN`
+    assert parse_value("1.$", "Float", "REAL") == math.inf
+    assert parse_value("-1.$", "Float", "REAL") == -math.inf
+    assert math.isnan(parse_value("-1.#IND", "Float", "REAL"))  # type: ignore[arg-type]
+    assert math.isnan(parse_value("1.#QNAN", "Float", "REAL"))  # type: ignore[arg-type]
+    assert parse_value("-1.#INF", "Float", "REAL") == -math.inf
