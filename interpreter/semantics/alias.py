@@ -20,7 +20,8 @@ from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from ..syntax.st_parser import parse_expression
+from ..syntax.st_lexer import SlowPath, fast_parse
+from ..syntax.st_parser import _parser, parse_expression
 from .program import Tag
 from .types import BOOL, ArrayType, DataType, Elementary, StructType
 
@@ -89,10 +90,9 @@ def resolve_aliases(
         return tag
 
     def _resolve_one(req: AliasRequest, chain: list[AliasRequest]) -> Tag:
-        try:
-            expr = parse_expression(req.target.strip())
-        except ValueError:
-            raise _Unresolved("E101", "this is not a tag reference") from None
+        expr = _reference(req.target.strip())
+        if expr is None:
+            raise _Unresolved("E101", "this is not a tag reference")
         steps: list[n.Expr] = []
         root = expr
         while isinstance(root, n.Member | n.Index | n.Bit):
@@ -129,6 +129,19 @@ def resolve_aliases(
     for req in requests:
         resolve(req, [])
     return {k: v for k, v in done.items() if v is not None}
+
+
+def _reference(text: str) -> n.Expr | None:
+    """The AliasFor text as an expression; the fast LALR driver first (exports may hold
+    thousands of aliases), lark's parser for anything it refuses."""
+    try:
+        return fast_parse(_parser(), text, "expr")  # type: ignore[no-any-return]
+    except SlowPath:
+        pass
+    try:
+        return parse_expression(text)
+    except ValueError:
+        return None
 
 
 def _walk(
