@@ -11,7 +11,7 @@ from pathlib import Path
 from ..diagnostics import Diagnostic
 from ..semantics.checker import Analysis, check_program
 from ..semantics.program import ProgramModel, build_program
-from ..semantics.project import build_project, controller_scope
+from ..semantics.project import build_project, controller_scope, declare_aliases
 from ..semantics.types import TypeTable
 from ..syntax import nodes as n
 from ..syntax.l5x import L5XProject, read_l5x
@@ -166,6 +166,8 @@ def _load(paths: list[Path], tags: Path | None) -> Loaded:
         routines[0].program_name or routines[0].name, routines, types, shared
     )
     diags.extend(mdiags)
+    if shared is not None and project is not None and project.aliases:
+        declare_aliases(model, [(None, project.aliases)], shared[1], diags)
     analysis = check_program(model)
     diags.extend(analysis.diags)
     diags.sort(key=lambda d: d.sort_key())

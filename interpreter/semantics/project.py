@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from ..syntax.l5x import L5XProject
+from ..syntax.l5x import AliasDecl, L5XProject
 from .alias import AliasRequest, resolve_aliases
 from .aoi import define_aoi
 from .program import (
@@ -100,7 +100,8 @@ def build_project(
 def controller_scope(
     project: L5XProject, types: TypeTable | None = None
 ) -> tuple[TypeTable, list[n.VarDecl], list[Diagnostic]]:
-    """For `--tags FILE.L5X`: the export's data types (UDTs, AOIs) and controller tags only."""
+    """For `--tags FILE.L5X`: the export's data types (UDTs, AOIs) and controller tags only
+    (its controller aliases are declared once the model exists: declare_aliases)."""
     types = types or TypeTable()
     diags: list[Diagnostic] = []
     udts = declare_types(types, [(td, project.path) for td in project.types], diags)
@@ -110,10 +111,21 @@ def controller_scope(
 
 
 def _aliases(model: ProgramModel, project: L5XProject, path: str, diags: list[Diagnostic]) -> None:
-    """Controller and program aliases, resolved to their base tags (semantics/alias.py)."""
+    scopes: list[tuple[str | None, list[AliasDecl]]] = [(None, project.aliases)]
+    scopes += [(p.name, p.aliases) for p in project.programs]
+    declare_aliases(model, scopes, path, diags)
+
+
+def declare_aliases(
+    model: ProgramModel,
+    scopes: list[tuple[str | None, list[AliasDecl]]],
+    path: str,
+    diags: list[Diagnostic],
+) -> None:
+    """Controller (program None) and program aliases, resolved to their base tags
+    (semantics/alias.py); `--tags FILE.L5X` declares the export's controller aliases too."""
     requests: dict[str, AliasRequest] = {}  # model.tags key -> request
     ordered: list[AliasRequest] = []
-    scopes = [(None, project.aliases)] + [(p.name, p.aliases) for p in project.programs]
     for program, aliases in scopes:
         for a in aliases:
             key = scope_key(program, a.name) if program is not None else a.name.upper()

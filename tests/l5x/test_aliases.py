@@ -192,3 +192,32 @@ def test_an_alias_without_a_base_is_one_diagnostic_at_its_declaration(
     # a module I/O base whose module is not in the export: not simulated, not an error
     assert diags[8]["message"].startswith("alias 'NoModule' for 'Local:5:I.Data.0': 'Local:5:I'")
     assert diags[8]["message"].endswith("; it is not simulated")
+
+
+def test_tags_option_brings_the_exports_controller_aliases(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # --tags declares controller tags only (no AOI instances): the fixture without Tank
+    export = tmp_path / "tags.L5X"
+    export.write_text(
+        "".join(
+            line
+            for line in ALIASES.read_text().splitlines(keepends=True)
+            if 'Name="Tank"' not in line
+        )
+    )
+    routine = tmp_path / "uses.st"
+    routine.write_text("Cmd2 := Cmd2 + 1;\nLamp := StartPB AND RunBit;\nDrive.Speed := 2.5;\n")
+    tags = run(
+        capsys,
+        routine,
+        2,
+        "Cmd2",
+        "M1.Cmd",
+        "Local:2:O.Data",
+        "M1.Speed",
+        extra=("--tags", str(export)),
+    )
+    # M1.Cmd 13 + 2 scans = 15; StartPB (Local:1:I.Data.3) and RunBit (Word.2) are set, so
+    # Lamp sets bit 0 of Local:2:O.Data; Drive is M1
+    assert tags == {"Cmd2": 15, "M1.Cmd": 15, "Local:2:O.Data": 1, "M1.Speed": 2.5}
