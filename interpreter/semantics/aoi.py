@@ -21,7 +21,7 @@ from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from ..syntax.l5x import AoiDecl
+from ..syntax.l5x import AliasDecl, AoiDecl
 from .alias import AliasRequest, resolve_aliases
 from .ladder_check import rung_instructions
 from .program import Tag, const_number, resolve_typeref
@@ -143,7 +143,7 @@ def _define(
             if value is not None:
                 st.defaults[key] = value
             aoi.tags[key] = Tag(lname, t, sp, path, d.init, slot=0, access=(idx,), init_path=path)
-    _alias_params(types, aoi, decl, path, diags)
+    _alias_params(types, aoi, decl, path, diags, operands)
     for r in decl.routines:
         aoi.routines[r.name.upper()] = r
     if "LOGIC" not in aoi.routines and decl.routines:
@@ -164,7 +164,12 @@ def _define(
 
 
 def _alias_params(
-    types: TypeTable, aoi: Aoi, decl: AoiDecl, path: str, diags: list[Diagnostic]
+    types: TypeTable,
+    aoi: Aoi,
+    decl: AoiDecl,
+    path: str,
+    diags: list[Diagnostic],
+    operands: list[Operand],
 ) -> None:
     """Alias parameters name a local tag, one of its members or bits (semantics/alias.py).
 
@@ -175,12 +180,14 @@ def _alias_params(
     so between calls the outside sees and sets what the logic sees (runtime/aoi.py).
     """
     requests: dict[str, AliasRequest] = {}
+    by_name: dict[str, AliasDecl] = {}
     for a in decl.aliases:
         key = a.name.upper()
         if key in aoi.tags or key in requests:
             diags.append(diag("E117", f"parameter '{a.name}' is already declared", path, a.span))
             continue
         requests[key] = AliasRequest(a.name, a.target, a.span)
+        by_name[key] = a
 
     def lookup(ident: str, program: str | None) -> Tag | AliasRequest | None:
         return aoi.tags.get(ident.upper()) or requests.get(ident.upper())
@@ -194,13 +201,24 @@ def _alias_params(
         if key in aoi.type.index:
             continue
         if len(tag.access) == 1 and tag.bit is None:
-            aoi.type.index[key] = tag.access[0]  # the local tag's member position
+            member = aoi.type.index[key] = tag.access[0]  # the local tag's member position
         else:
-            aoi.mirrors.append((len(aoi.type.members), tag.access, tag.bit))
+            member = len(aoi.type.members)
+            aoi.mirrors.append((member, tag.access, tag.bit))
             types.add_member(aoi.type, req.name, tag.type)
             host = aoi.type.defaults.get(aoi.type.members[tag.access[0]][0].upper())
             if tag.bit is not None and len(tag.access) == 1 and isinstance(host, int):
                 aoi.type.defaults[key] = (host >> tag.bit[0]) & 1  # the local's default bit
+        alias = by_name[key]
+        if alias.required and alias.usage in ("Input", "Output"):
+            param = AoiParam(req.name, alias.usage, tag.type, member, 0)
+            aoi.required.append(param)
+            operands.append(_operand(param))
+    if any(by_name[k].required for k in requests):
+        # call operands follow the declared order of the parameters, aliases among them
+        order = {name.upper(): i for i, name in enumerate(decl.param_order)}
+        aoi.required.sort(key=lambda p: order.get(p.name.upper(), len(order)))
+        operands[1:] = sorted(operands[1:], key=lambda o: order.get(o.name.upper(), len(order)))
 
 
 def _operand(p: AoiParam) -> Operand:

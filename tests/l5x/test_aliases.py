@@ -130,6 +130,21 @@ def test_an_alias_parameter_set_from_outside_reaches_the_local_tag(
     assert tags == {"Tank.Level": 20, "Tank.Full": True, "Tank.Step": 5}
 
 
+def test_required_alias_parameters_are_call_operands_in_declared_order(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # Fill(Tank, 1.25, LevelCopy): Rate (alias of Cfg.Speed, declared before Copy) gets 1.25,
+    # the logic doubles Cfg.Speed: 2.5; Copy (alias of Acc) hands Level out: 10 per scan
+    tags = run(capsys, ALIASES, 2, "Tank.Rate", "LevelCopy", "Tank.Level")
+    assert tags == {"Tank.Rate": 2.5, "LevelCopy": 20, "Tank.Level": 20}
+    # the operands are checked as any AOI's: one missing is E104
+    text = ALIASES.read_text().replace("Fill(Tank, 1.25, LevelCopy);", "Fill(Tank, 1.25);")
+    path = tmp_path / "short.L5X"
+    path.write_text(text)
+    _, diags = check(capsys, path)
+    assert [d["code"] for d in diags] == ["E104"]
+
+
 def test_set_through_an_alias_writes_the_base(capsys: pytest.CaptureFixture[str]) -> None:
     # StartPB is Local:1:I.Data.3: clearing it leaves Data = 8 - 8 = 0, so Lamp stays off and
     # the ladder rung XIC(StartPB) is false (Sum keeps 0)
