@@ -28,6 +28,8 @@ class AliasDecl:
     name: str
     target: str
     span: n.Span
+    usage: str = ""  # AOI alias parameters: Input | Output
+    required: bool = False  # AOI alias parameters: a call operand
 
 
 @dataclass(slots=True)
@@ -46,6 +48,7 @@ class AoiDecl:
     locals: list[n.VarDecl] = field(default_factory=list)
     routines: list[n.Routine] = field(default_factory=list)
     aliases: list[AliasDecl] = field(default_factory=list)  # parameters aliasing local tags
+    param_order: list[str] = field(default_factory=list)  # every parameter name, as declared
 
 
 @dataclass(slots=True)
@@ -370,13 +373,16 @@ class _Reader:
             if pname is None:
                 continue
             usage = pe.get("Usage") or "Input"
+            required = pe.get("Required").lower() == "true" or usage == "InOut"
+            aoi.param_order.append(pname)
             if pe.get("TagType") == "Alias":
-                aoi.aliases.append(AliasDecl(pname, pe.get("AliasFor"), self.span(pe)))
+                aoi.aliases.append(
+                    AliasDecl(pname, pe.get("AliasFor"), self.span(pe), usage, required)
+                )
                 continue
             decl = self.var(pe, pname, "parameter", data_tag="DefaultData")
             if decl is None:
                 continue
-            required = pe.get("Required").lower() == "true" or usage == "InOut"
             aoi.params.append(AoiParam(pname, usage, required, decl))
         local = e.child("LocalTags")
         for le in local.all("LocalTag") if local is not None else []:
