@@ -349,7 +349,7 @@ def _coordinate_paths(ctl: Controller, watched: list[str]) -> list[tuple[str, li
     out = []
     for tag in ctl.model.tags.values():
         st = tag.type
-        if not isinstance(st, StructType) or st.name != "COORDINATE_SYSTEM":
+        if not isinstance(st, StructType) or st.name != "COORDINATE_SYSTEM" or tag.alias_of:
             continue
         value = ctl.T[tag.slot]
         assert isinstance(value, list)

@@ -354,6 +354,8 @@ class RoutineCompiler:
             self.emit(Op.TAG, tag.slot)
             for pos in tag.access:  # AOI frame members, alias paths
                 self.emit(Op.MEMBER, pos)
+            if tag.bit is not None:  # an alias of one bit (semantics/alias.py)
+                self.emit(Op.BIT, tag.bit)
         elif isinstance(e, n.Member):
             self.place(e.base)
             bt = self.type_of(e.base)

@@ -58,6 +58,17 @@ def make_impls(aoi: Aoi, code: AoiRoutines) -> tuple[Callable[..., bool], Callab
                 frame.append(Cell(a) if isinstance(a, Ref | BitRef) else a)
         return frame
 
+    mirrors = aoi.mirrors
+
+    def mirror_in(inst: list) -> None:
+        """Alias parameters of a local member or bit: what the outside set reaches the local."""
+        for member, path, bit in mirrors:
+            _set_place(inst, path, bit, inst[member])
+
+    def mirror_out(inst: list) -> None:
+        for member, path, bit in mirrors:
+            inst[member] = _get_place(inst, path, bit)
+
     def copy_out(inst: list, args: tuple) -> None:
         for (usage, member, _), a in zip(spec, args, strict=True):
             if usage == "Output" and isinstance(a, Ref | BitRef):
@@ -65,6 +76,8 @@ def make_impls(aoi: Aoi, code: AoiRoutines) -> tuple[Callable[..., bool], Callab
 
     def call(ctx: Any, rung: object, inst: list, *args: object) -> bool:
         frame = frame_for(inst, args)
+        if mirrors:
+            mirror_in(inst)
         if ei is not None:
             inst[ei] = 1 if rung else 0
         if rung:
@@ -77,12 +90,40 @@ def make_impls(aoi: Aoi, code: AoiRoutines) -> tuple[Callable[..., bool], Callab
                 inst[eo] = 0
             if code.enable_in_false is not None:
                 code.enable_in_false(frame, ctx)
+        if mirrors:
+            mirror_out(inst)
         copy_out(inst, args)
         return bool(inst[eo]) if eo is not None else bool(rung)
 
     def prescan(ctx: Any, rung: object, inst: list, *args: object) -> None:
         frame = frame_for(inst, args)
+        if mirrors:
+            mirror_in(inst)
         if code.logic_prescan is not None:
             code.logic_prescan(frame, ctx)
+        if mirrors:
+            mirror_out(inst)
 
     return call, prescan
+
+
+def _get_place(inst: list, path: tuple[int, ...], bit: tuple[int, Elementary] | None) -> object:
+    value: Any = inst
+    for pos in path:
+        value = value[pos]
+    return (value >> bit[0]) & 1 if bit is not None else copy_value(value)
+
+
+def _set_place(
+    inst: list, path: tuple[int, ...], bit: tuple[int, Elementary] | None, value: object
+) -> None:
+    holder: Any = inst
+    for pos in path[:-1]:
+        holder = holder[pos]
+    last = path[-1]
+    if bit is None:
+        holder[last] = copy_value(value)
+        return
+    n, t = bit
+    word = holder[last] | (1 << n) if value else holder[last] & ~(1 << n)
+    holder[last] = convert(word, t)

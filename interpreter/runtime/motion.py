@@ -114,6 +114,7 @@ class MotionRuntime:
         group_tags = [
             t for t in model.tags.values()
             if isinstance(t.type, StructType) and t.type.name == "MOTION_GROUP"
+            and t.alias_of is None  # an alias names a group already counted
         ]  # fmt: skip
         by_name: dict[str, Group] = {}
         for t in group_tags:
@@ -126,7 +127,7 @@ class MotionRuntime:
         assert isinstance(explicit, dict)
         default: Group | None = self.groups[0] if self.groups else None
         for t in model.tags.values():
-            if not is_axis(t.type):
+            if not is_axis(t.type) or t.alias_of is not None:  # an alias is no second axis
                 continue
             home = by_name.get(str(explicit.get(t.name.upper(), "")).upper()) or default
             if home is None:  # SPEC 2.1: axes without a declared group join one implicit group

@@ -21,7 +21,8 @@ from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from ..syntax.l5x import AoiDecl
+from ..syntax.l5x import AliasDecl, AoiDecl
+from .alias import AliasRequest, resolve_aliases
 from .ladder_check import rung_instructions
 from .program import Tag, const_number, resolve_typeref
 from .types import BOOL, ArrayType, DataType, Elementary, StructType, TypeTable, is_unknown
@@ -51,6 +52,11 @@ class Aoi:
     required: list[AoiParam] = field(default_factory=list)  # call operands after the instance
     routines: dict[str, n.Routine] = field(default_factory=dict)  # LOGIC, PRESCAN, ...
     edges: dict[int, int] = field(default_factory=dict)  # id(ladder instruction) -> hidden member
+    # alias parameters of a member or bit of a local tag, seen from outside: (instance
+    # member, the local place's access path, bit); runtime/aoi.py keeps the two in step
+    mirrors: list[tuple[int, tuple[int, ...], tuple[int, Elementary] | None]] = field(
+        default_factory=list
+    )
 
 
 def define_aoi(
@@ -133,30 +139,7 @@ def _define(
             if value is not None:
                 st.defaults[key] = value
             aoi.tags[key] = Tag(lname, t, sp, path, d.init, slot=0, access=(idx,), init_path=path)
-    for a in decl.aliases:  # an alias parameter names a local tag (or one of its members)
-        target = aoi.tags.get(a.target.split(".")[0].upper())
-        at: DataType | None = target.type if target is not None else None
-        path_: list[int] = list(target.access) if target is not None else []
-        for part in a.target.split(".")[1:]:
-            m = at.member(part) if isinstance(at, StructType) else None
-            if m is None:
-                at = None
-                break
-            path_.append(m[0])
-            at = m[1]
-        if target is None or at is None or a.name.upper() in aoi.tags:
-            diags.append(
-                diag(
-                    "U305",
-                    f"alias parameter '{a.name}' for '{a.target}' cannot be simulated",
-                    path,
-                    a.span,
-                )
-            )
-            continue
-        aoi.tags[a.name.upper()] = Tag(
-            a.name, at, a.span, path, slot=target.slot, access=tuple(path_), alias_of=target
-        )
+    _alias_params(types, aoi, decl, path, diags, operands)
     for r in decl.routines:
         aoi.routines[r.name.upper()] = r
     if "LOGIC" not in aoi.routines and decl.routines:
@@ -174,6 +157,64 @@ def _define(
         family="aoi",
     )
     return aoi
+
+
+def _alias_params(
+    types: TypeTable,
+    aoi: Aoi,
+    decl: AoiDecl,
+    path: str,
+    diags: list[Diagnostic],
+    operands: list[Operand],
+) -> None:
+    """Alias parameters name a local tag, one of its members or bits (semantics/alias.py).
+
+    Inside the logic the alias reaches the local tag's storage. From outside, an alias of a
+    whole local tag is that member of the instance (`Tank.Level` reads the local tag `Acc`).
+    An alias of a member or a bit (`Sts_Running` for `_bSts.0`) gets an instance member of
+    its own that the call copies into the local place before the logic and back after it,
+    so between calls the outside sees and sets what the logic sees (runtime/aoi.py).
+    """
+    requests: dict[str, AliasRequest] = {}
+    by_name: dict[str, AliasDecl] = {}
+    for a in decl.aliases:
+        key = a.name.upper()
+        if key in aoi.tags or key in requests:
+            diags.append(diag("E117", f"parameter '{a.name}' is already declared", path, a.span))
+            continue
+        requests[key] = AliasRequest(a.name, a.target, a.span)
+        by_name[key] = a
+
+    def lookup(ident: str, program: str | None) -> Tag | AliasRequest | None:
+        return aoi.tags.get(ident.upper()) or requests.get(ident.upper())
+
+    resolved = resolve_aliases(list(requests.values()), lookup, path, diags)
+    for key, req in requests.items():
+        tag = resolved.get(id(req))
+        if tag is None:
+            continue
+        aoi.tags[key] = tag
+        if key in aoi.type.index:
+            continue
+        if len(tag.access) == 1 and tag.bit is None:
+            member = aoi.type.index[key] = tag.access[0]  # the local tag's member position
+        else:
+            member = len(aoi.type.members)
+            aoi.mirrors.append((member, tag.access, tag.bit))
+            types.add_member(aoi.type, req.name, tag.type)
+            host = aoi.type.defaults.get(aoi.type.members[tag.access[0]][0].upper())
+            if tag.bit is not None and len(tag.access) == 1 and isinstance(host, int):
+                aoi.type.defaults[key] = (host >> tag.bit[0]) & 1  # the local's default bit
+        alias = by_name[key]
+        if alias.required and alias.usage in ("Input", "Output"):
+            param = AoiParam(req.name, alias.usage, tag.type, member, 0)
+            aoi.required.append(param)
+            operands.append(_operand(param))
+    if any(by_name[k].required for k in requests):
+        # call operands follow the declared order of the parameters, aliases among them
+        order = {name.upper(): i for i, name in enumerate(decl.param_order)}
+        aoi.required.sort(key=lambda p: order.get(p.name.upper(), len(order)))
+        operands[1:] = sorted(operands[1:], key=lambda o: order.get(o.name.upper(), len(order)))
 
 
 def _operand(p: AoiParam) -> Operand:

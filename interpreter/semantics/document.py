@@ -17,7 +17,7 @@ from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
 from .checker import Analysis, check_program
 from .program import ProgramModel, build_program
-from .project import build_project, controller_scope
+from .project import build_project, controller_scope, declare_aliases
 from .types import TypeTable
 
 PROGRAM_SUFFIXES = (".st", ".rll")  # the routine files of one program (SPEC 2.4)
@@ -70,6 +70,8 @@ def analyse_program(sources: list[Source], tags: tuple[L5XProject, str] | None =
         routines[0].program_name or routines[0].name, routines, types, shared
     )
     diags.extend(mdiags)
+    if tags is not None and tags[0].aliases:  # the export's controller aliases (decision 0044)
+        declare_aliases(model, [(None, tags[0].aliases)], tags[1], diags)
     analysis = check_program(model)
     diags.extend(analysis.diags)
     diags.sort(key=lambda d: d.sort_key())

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from .types import ArrayType, DataType, StructType, TypeTable, unknown_type
+from .types import ArrayType, DataType, Elementary, StructType, TypeTable, unknown_type
 
 MAX_DIMS = 3
 
@@ -22,7 +22,8 @@ class Tag:
     program: str | None = None  # program scope (L5X); None = controller / file scope
     init_path: str | None = None
     access: tuple[int, ...] = ()  # member/element positions below the slot (AOI frames, aliases)
-    alias_of: Tag | None = None  # an alias shares its target's storage
+    alias_of: Tag | None = None  # an alias shares its base tag's storage (semantics/alias.py)
+    bit: tuple[int, Elementary] | None = None  # a BOOL alias of one bit: (bit, integer type)
 
     @property
     def qualified(self) -> str:

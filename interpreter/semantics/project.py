@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
 from ..syntax.l5x import AliasDecl, L5XProject
-from ..syntax.st_parser import parse_expression
+from .alias import AliasRequest, resolve_aliases
 from .aoi import define_aoi
 from .program import (
     ProgramInfo,
@@ -16,6 +16,7 @@ from .program import (
     declare_tags,
     declare_types,
     define_members,
+    module_tag_note,
     scope_key,
 )
 from .types import ArrayType, DataType, StructType, TypeTable
@@ -72,9 +73,7 @@ def build_project(
                     )
                 )
             seen.add(r.name.upper())
-    _aliases(model, project.aliases, None, path, diags)
-    for p in project.programs:
-        _aliases(model, p.aliases, p.name, path, diags)
+    _aliases(model, project, path, diags)
     for t in project.tasks:
         names = []
         for pname, sp in t.programs:
@@ -101,7 +100,8 @@ def build_project(
 def controller_scope(
     project: L5XProject, types: TypeTable | None = None
 ) -> tuple[TypeTable, list[n.VarDecl], list[Diagnostic]]:
-    """For `--tags FILE.L5X`: the export's data types (UDTs, AOIs) and controller tags only."""
+    """For `--tags FILE.L5X`: the export's data types (UDTs, AOIs) and controller tags only
+    (its controller aliases are declared once the model exists: declare_aliases)."""
     types = types or TypeTable()
     diags: list[Diagnostic] = []
     udts = declare_types(types, [(td, project.path) for td in project.types], diags)
@@ -110,75 +110,55 @@ def controller_scope(
     return types, project.tags, diags
 
 
-def _aliases(
+def _aliases(model: ProgramModel, project: L5XProject, path: str, diags: list[Diagnostic]) -> None:
+    scopes: list[tuple[str | None, list[AliasDecl]]] = [(None, project.aliases)]
+    scopes += [(p.name, p.aliases) for p in project.programs]
+    declare_aliases(model, scopes, path, diags)
+
+
+def declare_aliases(
     model: ProgramModel,
-    aliases: list[AliasDecl],
-    program: str | None,
+    scopes: list[tuple[str | None, list[AliasDecl]]],
     path: str,
     diags: list[Diagnostic],
 ) -> None:
-    """An alias shares its target's storage: a whole tag, a member or an element with constant
-    subscripts. Bit aliases and module I/O targets are reported as not supported."""
-    for a in aliases:
-        target, t, access = _resolve_alias(model, a.target, program)
-        if target is None or t is None:
-            diags.append(
-                diag(
-                    "U305",
-                    f"alias '{a.name}' for '{a.target}' cannot be simulated (bit, module I/O or unknown target)",
-                    path,
-                    a.span,
+    """Controller (program None) and program aliases, resolved to their base tags
+    (semantics/alias.py); `--tags FILE.L5X` declares the export's controller aliases too."""
+    requests: dict[str, AliasRequest] = {}  # model.tags key -> request
+    ordered: list[AliasRequest] = []
+    for program, aliases in scopes:
+        for a in aliases:
+            key = scope_key(program, a.name) if program is not None else a.name.upper()
+            prev = model.tags.get(key) or requests.get(key)
+            if prev is not None:
+                diags.append(
+                    diag(
+                        "E117",
+                        f"tag '{a.name}' is already declared at line {prev.span.line}",
+                        path,
+                        a.span,
+                    )
                 )
-            )
-            continue
-        key = scope_key(program, a.name) if program is not None else a.name.upper()
-        if key in model.tags:
-            diags.append(diag("E117", f"tag '{a.name}' is already declared", path, a.span))
-            continue
-        model.tags[key] = Tag(
-            a.name, t, a.span, path, program=program, access=access, alias_of=target
-        )
+                continue
+            req = AliasRequest(a.name, a.target, a.span, program)
+            requests[key] = req
+            ordered.append(req)
 
+    def lookup(ident: str, program: str | None) -> Tag | AliasRequest | None:
+        if program is not None:
+            key = scope_key(program, ident)
+            found = model.tags.get(key) or requests.get(key)
+            if found is not None:
+                return found
+        return model.tags.get(ident.upper()) or requests.get(ident.upper())
 
-def _resolve_alias(
-    model: ProgramModel, text: str, program: str | None
-) -> tuple[Tag | None, DataType | None, tuple[int, ...]]:
-    try:
-        e = parse_expression(text)
-    except ValueError:
-        return None, None, ()
-    path: list[object] = []
-    while isinstance(e, n.Member | n.Index):
-        path.append(e)
-        e = e.base
-    if not isinstance(e, n.Name):
-        return None, None, ()
-    root = model.tag(e.ident, program)
-    if root is None or root.alias_of is not None:
-        return None, None, ()
-    t: DataType = root.type
-    access: list[int] = list(root.access)
-    for step in reversed(path):
-        if isinstance(step, n.Member):
-            if not isinstance(t, StructType) or t.member(step.name) is None:
-                return None, None, ()
-            idx, t = t.member(step.name)  # type: ignore[misc]
-            access.append(idx)
-        else:
-            assert isinstance(step, n.Index)
-            if not isinstance(t, ArrayType) or len(step.indices) != len(t.dims):
-                return None, None, ()
-            flat = 0
-            for i, size in zip(step.indices, t.dims, strict=True):
-                if (
-                    not (isinstance(i, n.Literal) and isinstance(i.value, int))
-                    or not 0 <= i.value < size
-                ):
-                    return None, None, ()
-                flat = flat * size + i.value
-            access.append(flat)
-            t = t.elem
-    return root, t, tuple(access)
+    resolved = resolve_aliases(
+        ordered, lookup, path, diags, lambda ident: module_tag_note(model, ident)
+    )
+    for key, req in requests.items():
+        tag = resolved.get(id(req))
+        if tag is not None:
+            model.tags[key] = tag
 
 
 def _prune_inits(decls: list[n.VarDecl], types: TypeTable) -> None:

@@ -30,6 +30,8 @@ class AliasDecl:
     name: str
     target: str
     span: n.Span
+    usage: str = ""  # AOI alias parameters: Input | Output
+    required: bool = False  # AOI alias parameters: a call operand
 
 
 @dataclass(slots=True)
@@ -48,6 +50,7 @@ class AoiDecl:
     locals: list[n.VarDecl] = field(default_factory=list)
     routines: list[n.Routine] = field(default_factory=list)
     aliases: list[AliasDecl] = field(default_factory=list)  # parameters aliasing local tags
+    param_order: list[str] = field(default_factory=list)  # every parameter name, as declared
 
 
 @dataclass(slots=True)
@@ -388,6 +391,8 @@ class _Reader:
             if pname is None:
                 continue
             usage = pe.get("Usage") or "Input"
+            required = pe.get("Required").lower() == "true" or usage == "InOut"
+            aoi.param_order.append(pname)
             if pe.get("TagType") == "Alias" and protected:
                 # its target is an encrypted local tag: the parameter stays visible from
                 # outside with its own storage; only a bit alias (`_bSts.1`) shows its type
@@ -395,15 +400,16 @@ class _Reader:
                     continue
                 sp = self.span(pe)
                 bit = n.VarDecl([(pname, sp)], n.TypeRef("BOOL", [], sp), None, sp, block="VAR")
-                aoi.params.append(AoiParam(pname, usage, pe.get("Required").lower() == "true", bit))
+                aoi.params.append(AoiParam(pname, usage, required, bit))
                 continue
             if pe.get("TagType") == "Alias":
-                aoi.aliases.append(AliasDecl(pname, pe.get("AliasFor"), self.span(pe)))
+                aoi.aliases.append(
+                    AliasDecl(pname, pe.get("AliasFor"), self.span(pe), usage, required)
+                )
                 continue
             decl = self.var(pe, pname, "parameter", data_tag="DefaultData")
             if decl is None:
                 continue
-            required = pe.get("Required").lower() == "true" or usage == "InOut"
             aoi.params.append(AoiParam(pname, usage, required, decl))
         local = e.child("LocalTags")
         for le in local.all("LocalTag") if local is not None else []:

@@ -9,9 +9,11 @@ for exports without decorated data. Spans point at the data's place in the .L5X 
 
 from __future__ import annotations
 
+import calendar
 import math
 import re
 from dataclasses import dataclass
+from datetime import datetime
 
 from . import nodes as n
 from .literals import parse_number, parse_string
@@ -44,16 +46,53 @@ class RawMember:
     bit: int = 0
 
 
+# `DT#2022-02-22-06:00:00.000_000Z` (Radix Date/Time, microseconds) and
+# `LDT#1970-01-01-00:00:00.000_000_000Z` (Radix Date/Time (ns), nanoseconds): a LINT shown
+# as a UTC date and time. The fraction may be shorter; a `(UTC+hh:mm)` offset replaces the Z.
+_DATE_TIME = re.compile(
+    r"(L?)DT#(\d{4})-(\d{1,2})-(\d{1,2})-(\d{1,2}):(\d{1,2}):(\d{1,2})(?:\.([\d_]*))?"
+    r"\s*(?:Z|\(UTC([+-])(\d{1,2}):(\d{2})\))?",
+    re.IGNORECASE,
+)
+
+
+def parse_date_time(text: str) -> int | None:
+    """The LINT a `DT#` / `LDT#` value stands for: time since 1970-01-01 00:00 UTC, in
+    microseconds for DT# and nanoseconds for LDT# (decision 0045); None if malformed."""
+    m = _DATE_TIME.fullmatch(text.strip())
+    if m is None:
+        return None
+    ns, year, month, day, hour, minute, sec, frac, sign, oh, om = m.groups()
+    try:
+        when = datetime(int(year), int(month), int(day), int(hour), int(minute), int(sec))
+    except ValueError:
+        return None
+    seconds = calendar.timegm(when.timetuple())
+    if sign:  # local time at that offset from UTC
+        offset = (int(oh) * 60 + int(om)) * 60
+        seconds -= offset if sign == "+" else -offset
+    digits = 9 if ns else 6
+    frac = (frac or "").replace("_", "")
+    if len(frac) > digits:
+        return None
+    return seconds * 10**digits + int(frac.ljust(digits, "0") or "0")
+
+
 def parse_value(text: str, radix: str, dtype: str) -> int | float | None:
-    """A decorated `Value` attribute in its `Radix` (Decimal, Hex, Binary, Octal, ASCII, Float...)."""
+    """A decorated `Value` attribute in its `Radix` (Decimal, Hex, Binary, Octal, ASCII, Float,
+    Date/Time...)."""
     t = text.strip()
     if not t:
         return None
     up = t.upper()
+    if up.startswith(("DT#", "LDT#")):
+        return parse_date_time(t)
     if dtype in ("REAL", "LREAL") or radix in ("Float", "Exponential"):
-        if "INF" in up:
+        # v17-v20 exports print non-finite REALs the C runtime's way: `1.#QNAN`, `-1.#IND`
+        # (NaN) and `1.$` (+INF, the raw bytes 16#7F80_0000 show it; decision 0045)
+        if "INF" in up or up.endswith(".$"):
             return -math.inf if up.startswith("-") else math.inf
-        if "NAN" in up:
+        if "NAN" in up or "#IND" in up:
             return math.nan
         try:
             return float(t)
@@ -100,6 +139,9 @@ class DataReader:
             return self.decorated(deco.children[0])
         string = by_format.get("String")
         if string is not None:
+            dims = _dims(tag.get("Dimensions") or tag.get("Dimension"))
+            if dims:
+                return self.string_array(tag.get("DataType"), dims, string, by_format.get(""))
             return self.string_literal(string)
         alarm = by_format.get("Alarm")
         if alarm is not None and alarm.children:
@@ -196,6 +238,42 @@ class DataReader:
         for i in range(max(items) + 1 if items else 0):
             out.append(items.get(i) or _zero(elem_type, span))
         return n.ArrayInit(out, span)
+
+    def string_array(
+        self, dtype: str, dims: tuple[int, ...], string: XElem, raw: XElem | None
+    ) -> n.ArrayInit:
+        """A STRING array as Studio writes it without decorated data (v17 to v20 exports):
+        `<Data Format="String">` holds element [0] only; the raw `<Data>` (hex bytes) holds
+        every element as LEN (DINT, little-endian) then DATA, padded to 4 bytes."""
+        cap = self._string_capacity(dtype)
+        count = math.prod(dims)
+        if raw is not None and cap is not None:
+            size = 4 + (cap + 3) // 4 * 4
+            try:
+                data = bytes.fromhex(raw.text)
+            except ValueError:
+                data = b""
+            if len(data) == size * count:
+                span = self.pos.span(raw.text_offset) if raw.text_offset >= 0 else self.span(raw)
+                items: list[n.Init] = []
+                for k in range(count):
+                    elem = data[k * size : (k + 1) * size]
+                    length = max(0, min(cap, int.from_bytes(elem[:4], "little", signed=True)))
+                    text = elem[4 : 4 + length]
+                    items.append(n.Literal(text, "STRING", repr(text), span))
+                return n.ArrayInit(items, span)
+        # no raw bytes: element [0] is all the export tells; the others start empty
+        first = self.string_literal(string)
+        rest = [n.Literal(b"", "STRING", "''", first.span) for _ in range(count - 1)]
+        return n.ArrayInit([first, *rest], first.span)
+
+    def _string_capacity(self, dtype: str) -> int | None:
+        """Characters a STRING (82) or string-family type holds (its DATA member's size)."""
+        if dtype.upper() == "STRING":
+            return 82
+        members = self.udts.get(dtype.upper())
+        data = next((m for m in members or [] if m.name.upper() == "DATA"), None)
+        return data.dims if data is not None and data.dims > 0 else None
 
     def string_literal(self, e: XElem) -> n.Literal:
         raw = e.text.strip()
@@ -385,6 +463,8 @@ class _L5KParser:
 
 def _l5k_number(word: str) -> int | float | None:
     up = word.upper()
+    if up.startswith(("DT#", "LDT#")):
+        return parse_date_time(word)
     if "INF" in up or "NAN" in up:
         return parse_value(word, "Float", "REAL")
     neg = word.startswith("-")

@@ -22,10 +22,12 @@ _BLANKS = re.compile(r"[ \t\r\n\f]*")
 _INSTR = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)[ \t\r\n\f]*\(")
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _DIGITS = re.compile(r"[0-9]+(?![A-Za-z0-9_])")
-# INT or REAL without suffix, radix or exponent; anything longer is left to the grammar.
-_NUMBER = re.compile(r"[0-9][0-9_]*(?:\.[0-9][0-9_]*)?(?![A-Za-z0-9_.#])")
+# INT or REAL without suffix, radix or exponent, the point possibly first (`.5`) or last
+# (`5.`) as st.lark's REAL allows; anything longer is left to the grammar.
+_NUMBER = re.compile(r"(?:[0-9][0-9_]*(?:\.(?:[0-9][0-9_]*)?)?|\.[0-9][0-9_]*)(?![A-Za-z0-9_.#\[])")
 _IDENT_START = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
 _DIGIT = frozenset("0123456789")
+_NUMBER_START = frozenset("0123456789.")
 _BLANK = frozenset(" \t\r\n\f")
 # A binary operator after blanks; `=>` and `:=` (named call arguments) are left to the grammar.
 _BINARY = re.compile(
@@ -179,7 +181,7 @@ class _Scanner:
         if ch == "?":
             self.i += 1
             return n.Placeholder(self.span(self.i - 1, self.i))
-        if ch in _IDENT_START or ch in _DIGIT:  # most operands are one tag or one number
+        if ch in _IDENT_START or ch in _NUMBER_START:  # most operands: one tag or one number
             start = self.i
             try:
                 node = self.reference() if ch in _IDENT_START else self.number()
@@ -251,7 +253,7 @@ class _Scanner:
                 raise _GiveUp
             self.i += 1
             return inner
-        if ch in _DIGIT and ch:
+        if ch in _NUMBER_START and ch:  # `.5` here is a number: no operand precedes it
             return self.number()
         return self.reference()
 

@@ -42,7 +42,11 @@ _REGEX_TERMINALS = {
     "STRING_LIT",
     "VAR_KW",
     "UNSUPPORTED_KW",
+    "PROGRAM",
+    "_TYPE",
 }
+# Keyword terminals that are keywords only where their regex's lookahead holds (st.lark).
+_LOOKAHEAD_WORDS = {"PROGRAM": "PROGRAM", "_TYPE": "TYPE"}
 _REGEX_WORDS = {
     "VAR_KW": (
         "VAR",
@@ -55,6 +59,8 @@ _REGEX_WORDS = {
     ),
     "UNSUPPORTED_KW": ("RETURN", "GOTO", "CONTINUE"),
 }
+# Tokens that can end an operand: a '.' after one is member or bit access.
+_OPERAND_END = frozenset({"NAME", "QNAME", "MEMBER_NAME", "INT", "RSQB", "RPAR"})
 _LABEL_AFTER = re.compile(r"[ \t\r\n]*:(?![=A-Za-z0-9_])")
 
 
@@ -85,6 +91,11 @@ class StLexer(Lexer):
             for w in words:
                 assert pattern.fullmatch(w), (tname, w)
                 self.keywords[w] = tname
+        # the keyword's own regex decides, at the word's position, where it has a lookahead
+        self.lookahead: dict[str, re.Pattern[str]] = {}
+        for tname, w in _LOOKAHEAD_WORDS.items():
+            self.keywords[w] = tname
+            self.lookahead[tname] = re.compile(by_name[tname].pattern.to_regexp(), re.IGNORECASE)
         self.hard = {w for w in self.keywords if not name_re.fullmatch(w)}
         self.ops = ops
         op_alts = "|".join(re.escape(o) for o in sorted(ops, key=len, reverse=True))
@@ -174,6 +185,8 @@ class StLexer(Lexer):
                 if ttype is not None:
                     if upper not in hard and accepts is not None and ttype not in accepts():
                         ttype = "NAME"
+                    elif ttype in self.lookahead and not self.lookahead[ttype].match(text, start):
+                        ttype = "NAME"
                 elif ":" in value:
                     if accepts is not None and "QNAME" not in accepts():
                         stop = start + value.index(":")
@@ -192,6 +205,11 @@ class StLexer(Lexer):
                     ttype = "NAME"
             elif kind == "O":
                 ttype = ops[value]
+            elif kind == "REAL" and value[0] == "." and not self._real_here(accepts, last):
+                # `d.5`, `a.5e3`: after an operand '.' is member or bit access, not `.5`
+                stop = start + 1
+                value = "."
+                ttype = ops["."]
             else:
                 ttype = str(kind)
             col = start - line_start + 1
@@ -202,6 +220,13 @@ class StLexer(Lexer):
                 counter.char_pos, counter.line, counter.line_start_pos = stop, line, line_start
                 counter.column = stop - line_start + 1
             yield tok
+
+    @staticmethod
+    def _real_here(accepts: Callable[[], Any] | None, last: Token | None) -> bool:
+        """Whether a leading-dot REAL (`.5`) may stand here, as lark's contextual lexer decides."""
+        if accepts is not None:
+            return "REAL" in accepts()
+        return last is None or last.type not in _OPERAND_END
 
     @staticmethod
     def _skip_ws(text: str, pos: int, end: int) -> int:

@@ -84,8 +84,15 @@ def test_tag_data_becomes_initial_values() -> None:
     alarm = inits["Alm"]  # ALARM_DIGITAL: its configuration is the attribute list
     assert isinstance(alarm, n.StructInit)
     got = {m: i.value for m, _, i in alarm.members if isinstance(i, n.Literal)}
-    # numbers and true/false are members; the message and the DT# time keep their defaults
-    assert got == {"Severity": 750, "MinDurationPRE": 0, "Condition": 1, "AckRequired": 0}
+    # numbers, true/false and DT# times are members (DT#1970-01-01-00:00:00.000000Z is
+    # 0 microseconds since the epoch, decision 0045); the message keeps its default
+    assert got == {
+        "Severity": 750,
+        "MinDurationPRE": 0,
+        "Condition": 1,
+        "AckRequired": 0,
+        "ProgTime": 0,
+    }
 
 
 def test_sections_project_runs(capsys: pytest.CaptureFixture[str]) -> None:

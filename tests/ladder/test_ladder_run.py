@@ -115,6 +115,21 @@ def test_empty_legs_are_true(st: Runner) -> None:
     assert bits(t["e4"]) == [0, 0, 0, 1]
 
 
+def test_reals_with_the_point_first_or_last(st: Runner) -> None:
+    # `.25`, `5.` and `y*.6` as real exports write them (issue 9); `d.5` stays bit 5 of d.
+    src = """VAR r, s, x, y, z : REAL; d : DINT; q : BOOL; END_VAR
+    MOV(.25,r)MOV(5.,s)MOV(10.0,y)MOV(16#20,d);
+    CPT(x,y*.6)CPT(z,-.5+2.*r);
+    XIC(d.5)OTE(q);
+    """
+    t = tags(st, src, "r", "s", "x", "z", "q")
+    assert t["r"] == 0.25
+    assert t["s"] == 5.0
+    assert abs(t["x"] - 6.0) < 1e-5  # 10 * 0.6 in float32
+    assert t["z"] == 0.0  # -0.5 + 2 * 0.25
+    assert t["q"] is True  # 16#20 has bit 5 set
+
+
 def test_latch_and_unlatch(st: Runner) -> None:
     src = f"""VAR k : DINT; lat : BOOL; END_VAR
     EQU(k, 1) OTL(lat);

@@ -136,6 +136,54 @@ def test_suffixes_and_real_literals(st) -> None:
     assert t["n"] == 1000
 
 
+def test_reals_with_the_point_first_or_last(st) -> None:
+    # Studio 5000 accepts `.5` and `5.` (seen in real exports, issue 9); member access,
+    # bit access `d.5`, `d.[i]` and CASE ranges `1..5` must keep their meaning around them.
+    src = """
+    VAR a, b, c, e, f, g, h, y, z : REAL; d, i, k, m : DINT; bit, ib : BOOL; END_VAR
+    d := 16#20; i := 5; y := 10.0;
+    a [:=] .5;
+    b := 5.;
+    c := y*.6;
+    e := .5e3;
+    f := -.25;
+    g := -5. + .75;
+    h := (2.)*(.5);
+    bit := d.5;
+    ib := d.[i];
+    k := 3;
+    CASE k OF 1..5: m := 1; ELSE m := 2; END_CASE;
+    CASE k OF -.5..-.25: z := 1.; ELSE z := .125; END_CASE;
+    """
+    t = st.tags(src, "a", "b", "c", "e", "f", "g", "h", "bit", "ib", "m", "z")
+    assert t["a"] == 0.5
+    assert t["b"] == 5.0
+    assert abs(t["c"] - 6.0) < 1e-5  # 10 * 0.6 in float32
+    assert t["e"] == 500.0  # 0.5 * 10^3
+    assert t["f"] == -0.25
+    assert t["g"] == -4.25  # -5 + 0.75
+    assert t["h"] == 1.0  # 2 * 0.5
+    assert t["bit"] is True  # 16#20 = bit 5 set
+    assert t["ib"] is True  # d.[5], the same bit
+    assert t["m"] == 1  # 3 lies in 1..5
+    assert t["z"] == 0.125  # DINT 3 matches no label of the REAL range: ELSE
+
+
+def test_iec_header_words_are_names_in_logix_code(st) -> None:
+    # Logix does not reserve PROGRAM, ARRAY, TYPE or STRUCT: real exports call GSV with the
+    # class `Program` and name tags `array` (decision 0046); in our header they stay keywords.
+    src = """
+    TYPE Pair : STRUCT a, b : DINT; END_STRUCT END_TYPE
+    VAR array : ARRAY[0..2] OF DINT; type : Pair; struct : DINT; END_VAR
+    type.a := 4; type.b := 5;
+    array[1] := type.a * type.b;
+    struct := array[1] + 1;
+    """
+    t = st.tags(src, "array[1]", "struct")
+    assert t["array[1]"] == 20  # 4 * 5
+    assert t["struct"] == 21
+
+
 def test_bool_literals(st) -> None:
     src = """
     VAR a, b, c, d : BOOL := TRUE; END_VAR

@@ -51,6 +51,16 @@ SNIPPETS = {
     # Empty operands in an instruction call statement (the checker decides where they are allowed).
     "empty_operands": "VAR dt : DINT[7]; END_VAR GSV(WallClockTime,,LocalDateTime,dt[0]);\n"
     "SSV( WallClockTime , , LocalDateTime , dt[0] ); NOP(); COP(dt[0],,1); f(,); g(a := 1,);",
+    # REALs with the point first or last; `.` after an operand stays member or bit access.
+    "real_points": "VAR q : ARRAY[0..5] OF REAL; END_VAR a [:=] .5; b := 5. * -.25e1 + d.5;"
+    "c := a.b.3 + d.[i] + v[1].2 + f(.5, 1.); CASE k OF 1..5, -.5..-.25: x := .1; END_CASE;",
+    # IEC header words are keywords only in the header: tags `array`, GSV class `Program`.
+    "soft_header_words": "TYPE T : STRUCT x : DINT; END_STRUCT END_TYPE VAR a : ARRAY[0..1] OF T;"
+    " array : DINT[3]; END_VAR array[1] := a[0].x + type + struct; GSV(Program, THIS, LastScanTime, t);",
+    # PROGRAM and TYPE open a unit or block only before a name; else they are tags.
+    "type_program_tags": "type.a := 4; program := type.b; type[1] := program;",
+    "type_after_header": "TYPE END_TYPE VAR x : DINT; END_VAR type := x; program.x := 1;",
+    "program_unit": "PROGRAM Main\nTYPE P : STRUCT a : DINT; END_STRUCT END_TYPE VAR q : P; END_VAR q.a := 1; END_PROGRAM",
     "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
