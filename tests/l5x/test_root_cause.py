@@ -10,8 +10,12 @@ are valid Logix once the type exists.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
+import pytest
+
+from interpreter.cli import main
 from interpreter.runtime.loader import load
 
 HEAD = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
@@ -128,3 +132,62 @@ def test_undefined_tag_in_an_unknown_instruction_is_still_reported_inside_member
     path.write_text(text.replace("FROB(One,Once,All,n)", "FROB(Nowhere.Level,Once)"))
     codes = [d.code for d in load([path]).diagnostics]
     assert codes == ["E103", "E101"]
+
+
+ALIASES = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
+<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="33.01" TargetName="A" TargetType="Controller">
+<Controller Use="Target" Name="A" ProcessorType="1756-L83E" MajorRev="33" MinorRev="11">
+<Tags>
+<Tag Name="Word" TagType="Base" DataType="DINT"/>
+<Tag Name="n" TagType="Base" DataType="DINT"/>
+<Tag Name="Start" TagType="Alias" AliasFor="{start}"/>
+<Tag Name="Lost" TagType="Alias" AliasFor="{lost}"/>
+</Tags>
+<Programs><Program Name="Main" MainRoutineName="Logic"><Routines>
+<Routine Name="Logic" Type="RLL"><RLLContent>
+<Rung Number="0" Type="N"><Text><![CDATA[XIC(Start)XIO(Lost)ADD(n,1,n);]]></Text></Rung>
+<Rung Number="1" Type="N"><Text><![CDATA[XIC(Start)OTE(Lost);]]></Text></Rung>
+<Rung Number="2" Type="N"><Text><![CDATA[XIC(Lost)OTL(Start);]]></Text></Rung>
+</RLLContent></Routine>
+</Routines></Program></Programs>
+<Tasks><Task Name="T" Type="CONTINUOUS" Priority="10" Watchdog="500">
+<ScheduledPrograms><ScheduledProgram Name="Main"/></ScheduledPrograms></Task></Tasks>
+</Controller>
+</RSLogix5000Content>
+"""
+
+
+def test_an_alias_without_a_base_is_reported_once(tmp_path: Path) -> None:
+    # Start is a bit of Word (the clean twin); Lost names a tag that does not exist: one E101
+    # at the alias, none at its three uses
+    path = tmp_path / "alias.L5X"
+    path.write_text(ALIASES.format(start="Word.0", lost="Word.1"))
+    assert [d.code for d in load([path]).diagnostics] == []
+    path.write_text(ALIASES.format(start="Word.0", lost="Nowhere.1"))
+    found = [(d.code, d.span.line) for d in load([path]).diagnostics]
+    assert found == [("E101", 8)]
+
+
+def test_an_alias_of_missing_module_data_runs_without_its_uses(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Lost aliases a module input the export does not describe: one U305 at the alias; the
+    # instructions using it do not execute and pass the rung condition on. Rung 0: Start
+    # (Word.0) is 0, so ADD does not run and n stays 0; rung 2: XIC(Lost) passes the true
+    # rung on to OTL(Start), so Word.0 is set: Word = 1.
+    path = tmp_path / "module_alias.L5X"
+    path.write_text(ALIASES.format(start="Word.0", lost="Local:3:I.Data.4"))
+    found = [(d.code, d.span.line) for d in load([path]).diagnostics]
+    assert found == [("U305", 8)]
+    assert run_tags(capsys, path, "n", "Word") == {"n": 0, "Word": 1}
+
+
+def run_tags(capsys: pytest.CaptureFixture[str], path: Path, *watch: str) -> dict[str, object]:
+    argv = ["run", str(path), "--scans", "1", "--json"]
+    for w in watch:
+        argv += ["--watch", w]
+    capsys.readouterr()
+    code = main(argv)
+    out = capsys.readouterr().out
+    assert code == 0, out
+    return json.loads(out)["tags"]  # type: ignore[no-any-return]
