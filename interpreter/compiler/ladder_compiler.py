@@ -569,7 +569,7 @@ class LadderCompiler(RoutineCompiler):
         for rung in rungs:
             for ins in rung_instructions(rung.elements):
                 cat = self.catalog_entry(ins)
-                if cat is None:
+                if cat is None or id(ins) in self.a.unsimulated:  # U306/U305: not executed
                     continue
                 self.site_span = ins.span
                 ops = ins.operands

@@ -458,6 +458,8 @@ class RoutineCompiler:
         main_ops = self.ops
         self.ops = self.code.prescan
         for s in _walk(body):
+            if id(s) in self.a.unsimulated:  # uses a tag that is not simulated (U306)
+                continue
             if isinstance(s, n.Assign) and s.nonretentive:
                 t = self.type_of(s.target)
                 self.place(s.target)

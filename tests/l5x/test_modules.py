@@ -224,10 +224,11 @@ def test_uses_of_module_tags_without_data_do_not_execute(
         MODULES.read_text()
         .replace(
             "Counts := Rack3:1:I1.Counts;",
-            "Counts := Rack3:2:I.Data; IF xPLC28:I.Fault THEN Counts := 5; END_IF;",
+            "Counts [:=] Rack3:2:I.Data; IF xPLC28:I.Fault THEN Counts := 5; END_IF;",
         )
         .replace("XIC(Rack3:I.Data[1].2)OTL(", "XIC(Rack3:I.Data[1].2)XIC(Rack3:2:I.Data.0)OTL(")
-    )
+        .replace("OTL(Rack3:O.Data[3].7);", "OTL(Rack3:O.Data[3].7)OTE(xPLC28:O.Pt00.Data);")
+    )  # the non-retentive [:=] and the OTE are also left out of the prescan
     path = tmp_path / "skip.L5X"
     path.write_text(text)
     # one U306 per module (Rack3:2 in ST and on the rung, xPLC28), nothing else
