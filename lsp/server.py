@@ -63,7 +63,12 @@ class LogixServer(LanguageServer):
     def publish(self, uri: str) -> None:
         self.pending.pop(uri, None)
         an = guarded(self, None, lambda: self.docs.analyse(uri))
-        if an is None:
+        if an is None:  # closed, or text `check` would refuse as input: nothing to show
+            doc = self.docs.get(uri)
+            if doc is not None:
+                self.text_document_publish_diagnostics(
+                    t.PublishDiagnosticsParams(uri=uri, diagnostics=[], version=doc.version)
+                )
             return
         diags = []
         for d in an.diagnostics:

@@ -21,6 +21,7 @@ from interpreter.semantics.document import (
     Source,
     analyse_program,
     analyse_project,
+    looks_binary,
     read_export,
 )
 from interpreter.syntax.l5x import L5XProject
@@ -111,8 +112,8 @@ class Workspace:
         doc = self.documents.get(uri)
         if doc is None or doc.language is None:
             return None
-        if len(doc.text) > MAX_DOCUMENT_CHARS:
-            return None
+        if len(doc.text) > MAX_DOCUMENT_CHARS or looks_binary(doc.text[:8192].encode()):
+            return None  # `check` refuses such a file as input: nothing to verify
         sources = self._program_sources(doc) if doc.language != "l5x" else []
         key: tuple[object, ...] = (doc.text, self.tags_path, tuple(sources))
         hit = self._cache.get(uri)

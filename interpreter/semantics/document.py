@@ -24,6 +24,11 @@ PROGRAM_SUFFIXES = (".st", ".rll")  # the routine files of one program (SPEC 2.4
 PROJECT_SUFFIXES = (".l5x", ".l5k")  # whole-project exports: XML and text form (SPEC 2.3, 2.3a)
 
 
+def looks_binary(data: bytes) -> bool:
+    """A NUL byte near the start: not Logix source text (the CLI refuses such a file)."""
+    return b"\x00" in data[:8192]
+
+
 @dataclass(frozen=True, slots=True)
 class Source:
     """The text of one `.st` or `.rll` routine file; `path` names it in diagnostics."""
