@@ -21,9 +21,10 @@ from interpreter.semantics.document import (
     Source,
     analyse_program,
     analyse_project,
+    looks_binary,
     read_export,
 )
-from interpreter.syntax.l5x import L5XProject
+from interpreter.syntax.l5x import L5XProject, ParseMemo
 
 MAX_DOCUMENT_CHARS = 64 * 1024 * 1024  # as the CLI's file size limit
 
@@ -87,6 +88,7 @@ class Workspace:
     documents: dict[str, Document] = field(default_factory=dict)
     tags_path: str | None = None  # the `logixst.tags` setting: plays the role of --tags
     _cache: dict[str, tuple[tuple[object, ...], Analysed]] = field(default_factory=dict)
+    _memos: dict[str, ParseMemo] = field(default_factory=dict)  # an export's parsed routines
 
     def open(self, uri: str, text: str, version: int = 0) -> Document:
         doc = Document(uri, uri_to_path(uri), text, version)
@@ -102,6 +104,7 @@ class Workspace:
     def close(self, uri: str) -> None:
         self.documents.pop(uri, None)
         self._cache.pop(uri, None)
+        self._memos.pop(uri, None)
 
     def get(self, uri: str) -> Document | None:
         return self.documents.get(uri)
@@ -111,15 +114,16 @@ class Workspace:
         doc = self.documents.get(uri)
         if doc is None or doc.language is None:
             return None
-        if len(doc.text) > MAX_DOCUMENT_CHARS:
-            return None
+        if len(doc.text) > MAX_DOCUMENT_CHARS or looks_binary(doc.text[:8192].encode()):
+            return None  # `check` refuses such a file as input: nothing to verify
         sources = self._program_sources(doc) if doc.language != "l5x" else []
         key: tuple[object, ...] = (doc.text, self.tags_path, tuple(sources))
         hit = self._cache.get(uri)
         if hit is not None and hit[0] == key:
             return hit[1]
         if doc.language == "l5x":
-            loaded = analyse_project(doc.path, doc.text.encode("utf-8"))
+            memo = self._memos.setdefault(uri, ParseMemo())
+            loaded = analyse_project(doc.path, doc.text.encode("utf-8"), memo)
         else:
             loaded = analyse_program(sources, self._tags())
         mine = [d for d in loaded.diagnostics if d.path == doc.path]
@@ -136,6 +140,19 @@ class Workspace:
         result = Analysed(doc, loaded, mine)
         self._cache[uri] = (key, result)
         return result
+
+    def latest(self, uri: str) -> Analysed | None:
+        """The last analysis of the document, even if its text has changed since.
+
+        Completion, hover and signature help need names and types, which a keystroke rarely
+        changes, and must answer in milliseconds: they read this (with the document's current
+        text, which `Analysed.document` always holds) instead of re-analysing. Diagnostics
+        and navigation use `analyse`.
+        """
+        hit = self._cache.get(uri)
+        if hit is not None and uri in self.documents:
+            return hit[1]
+        return self.analyse(uri)
 
     def _program_sources(self, doc: Document) -> list[Source]:
         """This document and its sibling routine files, in `check DIR` order (sorted)."""

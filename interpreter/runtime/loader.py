@@ -15,6 +15,7 @@ from ..semantics.document import (
     Source,
     analyse_program,
     analyse_project,
+    looks_binary,
     parse_source,
     read_export,
 )
@@ -48,7 +49,7 @@ def read_bytes(path: Path) -> bytes:
         raise InputError(f"{path}: cannot read: {exc.strerror}") from exc
     if not data.strip():
         raise InputError(f"{path}: file is empty")
-    if b"\x00" in data[:8192]:
+    if looks_binary(data):
         raise InputError(f"{path}: looks like a binary file, not Logix source text")
     return data
 

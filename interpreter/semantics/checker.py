@@ -638,22 +638,28 @@ class Checker(LadderChecks):
     def ladder_instr(self, i: n.LadderInstr) -> None:
         ops = i.operands
         for k, e in enumerate(ops):
-            if e.__class__ is n.Literal and e.type == "BOOL":  # type: ignore[attr-defined]
+            if (e.__class__ is n.Literal and e.type == "BOOL") or (  # type: ignore[attr-defined]
+                e.__class__ is n.Name and e.ident.upper() in ("TRUE", "FALSE")  # type: ignore[attr-defined]
+            ):
                 ops[k] = self.bool_tag(e)  # type: ignore[arg-type]
         self._vague = False
         self.instruction(i, i.name, i.name_span, i.span, ops, None)
         if self._vague:
             self.a.unsimulated.add(id(i))
 
-    def bool_tag(self, e: n.Literal) -> n.Expr:
+    def bool_tag(self, e: n.Literal | n.Name) -> n.Expr:
         """`True` / `False` as a ladder operand: a tag when the project declares one of that name.
 
         Studio allows tags named TRUE and FALSE, and ladder has no BOOL literals of its own
-        (decision 0054): `OTE(True)` writes the tag. Without such a tag the word stays the
-        literal it was read as."""
-        if self.lookup(e.text) is None:
+        (decision 0054): `OTE(True)` writes the tag. Without such a tag the word is the
+        literal it was read as. The rung's operand list is rewritten either way, so a rung
+        kept between analyses (the language server's parse memo) follows the current tags."""
+        text = e.text if isinstance(e, n.Literal) else e.ident
+        if self.lookup(text) is not None:
+            return e if isinstance(e, n.Name) else n.Name(text, e.span)
+        if isinstance(e, n.Literal):
             return e
-        return n.Name(e.text, e.span)
+        return n.Literal(1 if text.upper() == "TRUE" else 0, "BOOL", text, e.span)
 
     def instruction(
         self,

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from ..diagnostics import Diagnostic
 from ..syntax import nodes as n
 from ..syntax.l5k import read_l5k
-from ..syntax.l5x import L5XProject, read_l5x
+from ..syntax.l5x import L5XProject, ParseMemo, read_l5x
 from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
 from .checker import Analysis, check_program
@@ -22,6 +22,11 @@ from .types import TypeTable
 
 PROGRAM_SUFFIXES = (".st", ".rll")  # the routine files of one program (SPEC 2.4)
 PROJECT_SUFFIXES = (".l5x", ".l5k")  # whole-project exports: XML and text form (SPEC 2.3, 2.3a)
+
+
+def looks_binary(data: bytes) -> bool:
+    """A NUL byte near the start: not Logix source text (the CLI refuses such a file)."""
+    return b"\x00" in data[:8192]
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,16 +83,19 @@ def analyse_program(sources: list[Source], tags: tuple[L5XProject, str] | None =
     return Loaded(model, analysis, diags)
 
 
-def read_export(path: str, data: bytes) -> tuple[L5XProject | None, list[Diagnostic]]:
-    """An .L5X or .L5K export (by suffix); both give the same project model."""
+def read_export(
+    path: str, data: bytes, memo: ParseMemo | None = None
+) -> tuple[L5XProject | None, list[Diagnostic]]:
+    """An .L5X or .L5K export (by suffix); both give the same project model. `memo` keeps
+    an L5X document's parsed routines between reads (the language server)."""
     if path.lower().endswith(".l5k"):
         return read_l5k(data, path)
-    return read_l5x(data, path)
+    return read_l5x(data, path, memo)
 
 
-def analyse_project(path: str, data: bytes) -> Loaded:
+def analyse_project(path: str, data: bytes, memo: ParseMemo | None = None) -> Loaded:
     """One .L5X/.L5K export is one project (SPEC 9.8); positions are positions in that file."""
-    project, diags = read_export(path, data)
+    project, diags = read_export(path, data, memo)
     if project is None:
         stem = path.rsplit("/", 1)[-1].rsplit(".", 1)[0]
         return Loaded(ProgramModel(stem, [], TypeTable()), Analysis(), diags)

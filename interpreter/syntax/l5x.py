@@ -10,7 +10,9 @@ diagnostics can name them. Elements this tool does not know are ignored.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field, fields, is_dataclass
+from typing import TypeVar
 
 from stdlib import catalog
 
@@ -20,6 +22,8 @@ from .l5x_data import DataReader, RawMember, _dims
 from .l5x_modules import ModuleReader
 from .st_parser import parse_st
 from .xml_reader import Positions, XElem, XmlRejected, parse_xml
+
+_T = TypeVar("_T")
 
 ROOT = "RSLogix5000Content"
 _BIT_ALIAS = re.compile(r"\.\d+$")  # an alias for a bit: `_bSts.1`
@@ -133,7 +137,33 @@ _AXIS_ENUM_PARAMS = {
 }
 
 
-def read_l5x(data: bytes, path: str) -> tuple[L5XProject | None, list[Diagnostic]]:
+@dataclass(slots=True)
+class ParseMemo:
+    """Routine pieces parsed by the previous read of the same document.
+
+    The language server reads an export again after every change; a rung or ST routine
+    whose text and position are unchanged is taken from here instead of being parsed again
+    (downstream, only the checker rewrites a ladder operand `True`/`False` into the tag or
+    the literal, by the current tags, so a kept rung follows them). Only the pieces of the
+    last read are kept.
+    """
+
+    previous: dict[tuple[object, ...], object] = field(default_factory=dict)
+    current: dict[tuple[object, ...], object] = field(default_factory=dict)
+
+    def get(self, key: tuple[object, ...], parse: Callable[[], _T]) -> _T:
+        hit = self.previous.get(key)
+        value: _T = hit if hit is not None else parse()  # type: ignore[assignment]
+        self.current[key] = value
+        return value
+
+    def rotate(self) -> None:
+        self.previous, self.current = self.current, {}
+
+
+def read_l5x(
+    data: bytes, path: str, memo: ParseMemo | None = None
+) -> tuple[L5XProject | None, list[Diagnostic]]:
     """Parse an export; None (with an S007 diagnostic) when it is not a usable L5X file."""
     try:
         root, pos = parse_xml(data)
@@ -155,15 +185,18 @@ def read_l5x(data: bytes, path: str) -> tuple[L5XProject | None, list[Diagnostic
         return None, [
             diag("S007", "the export has no <Controller> element", path, pos.elem_span(root))
         ]
-    reader = _Reader(path, pos)
+    reader = _Reader(path, pos, memo or ParseMemo())
     project = reader.read(root, ctl)
+    if memo is not None:
+        memo.rotate()
     return project, [project.annotate(d) for d in reader.diags]
 
 
 class _Reader:
-    def __init__(self, path: str, pos: Positions) -> None:
+    def __init__(self, path: str, pos: Positions, memo: ParseMemo) -> None:
         self.path = path
         self.pos = pos
+        self.memo = memo
         self.diags: list[Diagnostic] = []
         self.udt_raw: dict[str, list[RawMember]] = {}
         self.data = DataReader(pos, self.udt_raw)
@@ -500,16 +533,21 @@ class _Reader:
             sp = self.span(e)
             line_map.append((sp.line, sp.col - 1))
             texts.append("")
-        routine, diags = parse_st("\n".join(texts), self.path, name)
+        joined = "\n".join(texts)
 
-        def remap(s: n.Span) -> n.Span:
-            a = line_map[min(max(s.line, 1), len(line_map)) - 1]
-            b = line_map[min(max(s.end_line, 1), len(line_map)) - 1]
-            return n.Span(a[0], s.col + a[1], b[0], s.end_col + b[1])
+        def parse() -> tuple[n.Routine, list[Diagnostic]]:
+            routine, diags = parse_st(joined, self.path, name)
 
-        _remap(routine, remap)
-        for d in diags:
-            self.diags.append(Diagnostic(d.code, d.message, d.path, remap(d.span)))
+            def remap(s: n.Span) -> n.Span:
+                a = line_map[min(max(s.line, 1), len(line_map)) - 1]
+                b = line_map[min(max(s.end_line, 1), len(line_map)) - 1]
+                return n.Span(a[0], s.col + a[1], b[0], s.end_col + b[1])
+
+            _remap(routine, remap)
+            return routine, [Diagnostic(d.code, d.message, d.path, remap(d.span)) for d in diags]
+
+        routine, diags = self.memo.get(("st", name, joined, tuple(line_map)), parse)
+        self.diags.extend(diags)
         routine.span = self.span(e)
         return routine
 
@@ -533,7 +571,10 @@ class _Reader:
             label = f"{where}, rung {number}"
             for k in range(text.count("\n") + 1):
                 self.project.context.setdefault(line + k, label)
-            rung, diags = parse_rung(text, self.path, number, line, col)
+            rung, diags = self.memo.get(
+                ("rung", text, number, line, col),
+                lambda: parse_rung(text, self.path, number, line, col),  # noqa: B023 (called now)
+            )
             self.diags.extend(diags)
             if rung is not None:
                 comment = re_.child("Comment")

@@ -53,12 +53,33 @@ class Item:
     sort: str = "5"  # rank: lower sorts first
 
 
+MAX_ITEMS = 300  # more is never read; the editor asks again as the user types
+
+
 def complete(an: Analysed, line: int, character: int) -> list[Item]:
-    """Candidates at 0-based (line, character) of the analysed document."""
+    """Candidates at 0-based (line, character), those matching the typed prefix first, at
+    most MAX_ITEMS (see `is_incomplete`)."""
+    items, _ = complete_list(an, line, character)
+    return items
+
+
+def complete_list(an: Analysed, line: int, character: int) -> tuple[list[Item], bool]:
+    """(items, incomplete): incomplete when candidates were left out by the MAX_ITEMS cap."""
     doc = an.document
-    text = doc.text
-    offset = offset_of(text, line, character)
-    ctx = classify(text, offset, doc.language or "st")
+    ctx = classify(doc.text, offset_of(doc.text, line, character), doc.language or "st")
+    items = _candidates(an, line, ctx)
+    if ctx.prefix and ctx.where is not Where.OPERAND:
+        # a half-typed word narrows the list (enumeration texts keep all: ladder forms have
+        # spaces, and an operand has few values)
+        key = ctx.prefix.lower()
+        items = [i for i in items if i.label.lower().startswith(key)] or items
+    if len(items) > MAX_ITEMS:
+        items = sorted(items, key=lambda i: (i.sort, i.label.lower()))[:MAX_ITEMS]
+        return items, True
+    return items, False
+
+
+def _candidates(an: Analysed, line: int, ctx: Context) -> list[Item]:
     model = an.loaded.model
     program = program_at(an, line + 1)
     if ctx.where is Where.NONE:

@@ -20,6 +20,9 @@ _BLOCK_COMMENT = re.compile(r"\(\*.*?\*\)|/\*.*?\*/", re.S)
 _STRING = re.compile(r"'(?:\$.|[^'$\n])*'")
 
 
+WINDOW = 8192  # characters of context before the cursor (a statement is never longer)
+
+
 class Where(Enum):
     STATEMENT = "statement"  # start of a statement / rung element: instructions, keywords, tags
     MEMBER = "member"  # after `.`: members of the expression's type, or bit numbers
@@ -84,7 +87,15 @@ def classify(text: str, offset: int, language: str) -> Context:
         if region is None:
             return Context(Where.NONE)
         begin, language = region
-    raw = text[begin:offset]
+    # The statement around the cursor is what matters: look back at most WINDOW characters
+    # (from a line start), so that a keystroke deep in a long document stays cheap.
+    window = (
+        text.rfind("\n", begin, max(begin, offset - WINDOW)) + 1
+        if offset - begin > WINDOW
+        else begin
+    )
+    var_head = text[begin:window]  # only for finding an open VAR block further up
+    raw = text[window:offset]
     before = mask(raw)
     if before != raw and before[-1:] == " " and raw[-1:] != " ":
         return Context(Where.NONE, language=language)  # inside a comment or string
@@ -102,6 +113,10 @@ def classify(text: str, offset: int, language: str) -> Context:
     if language == "st":
         last_open = _last(_VAR_OPEN, head)
         last_close = _last(_VAR_CLOSE, head)
+        if last_open < 0 and last_close < 0 and var_head:
+            far_open, far_close = _last(_VAR_OPEN, var_head), _last(_VAR_CLOSE, var_head)
+            if far_open > far_close:  # a VAR block opened before the window is still open
+                last_open, last_close = 0, -1
         if last_open > last_close:
             decl = head[max(head.rfind(";"), last_open) :]
             if ":=" in decl:

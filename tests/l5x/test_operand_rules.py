@@ -246,3 +246,27 @@ def test_status_flag_written_by_a_rung(tmp_path: Path, capsys: pytest.CaptureFix
     assert codes(path) == []
     tags = run(path, capsys, "b", "d", "dst[0]")
     assert tags == {"b": True, "d": -2147483648, "dst[0]": 1}
+
+
+def test_true_follows_the_tags_when_the_rung_is_read_again(tmp_path: Path) -> None:
+    # the language server keeps parsed rungs between reads (ParseMemo): the same rung, at the
+    # same place, checked with and then without the tags must give what a fresh read gives
+    from interpreter.semantics.checker import check_program
+    from interpreter.semantics.project import build_project
+    from interpreter.syntax.l5x import ParseMemo, read_l5x
+
+    with_tags = export(tmp_path, "XIC(True)OTE(b);", tags=TRUE_FALSE_TAGS).read_text()
+    # the same lines, the tags renamed: the rung keeps its position, so the memo returns it
+    without = with_tags.replace('Name="True"', 'Name="Tx"').replace('Name="False"', 'Name="Fx"')
+    memo = ParseMemo()
+    seen = []
+    rungs = []
+    for text in (with_tags, without, with_tags):
+        project, _ = read_l5x(text.encode(), "rules.L5X", memo)  # rotates the memo itself
+        assert project is not None
+        rungs.append(project.programs[0].routines[0].rungs[0])
+        model, _ = build_project(project)
+        seen.append([d.code for d in check_program(model).diags])
+    assert rungs[0] is rungs[1] is rungs[2]  # the memo handed back the same rung each time
+    # with the tags: clean; without: XIC of the literal TRUE is not a tag (E106)
+    assert seen == [[], ["E106"], []]

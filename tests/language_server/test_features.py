@@ -83,3 +83,29 @@ def test_declarations_still_known_while_the_text_does_not_parse(tmp_path: Path) 
     assert an is not None
     assert [d.code for d in an.diagnostics] == ["S001"]  # what check says of the text
     assert "AX" in an.loaded.model.tags  # and completion still knows the axis
+
+
+def test_completion_narrows_to_the_typed_prefix_and_caps_the_list(tmp_path: Path) -> None:
+    from lsp.features.completion import MAX_ITEMS, complete_list
+
+    decls = "".join(f"  tag{i} : DINT;\n" for i in range(MAX_ITEMS + 50))
+    text = f"VAR\n  Speed, Spare : REAL;\n{decls}END_VAR\nSp\nx\n"
+    ws = Workspace()
+    uri = (tmp_path / "a.st").as_uri()
+    ws.open(uri, text)
+    an = ws.analyse(uri)
+    assert an is not None
+    line = text.count("\n", 0, text.index("Sp\n"))
+    items, incomplete = complete_list(an, line, 2)  # after "Sp"
+    assert sorted(i.label for i in items if i.kind == 6) == ["Spare", "Speed"]  # variables
+    assert not incomplete
+    items, incomplete = complete_list(an, line + 1, 0)  # a statement start: everything
+    assert len(items) == MAX_ITEMS and incomplete
+
+
+def test_var_block_found_beyond_the_context_window() -> None:
+    from lsp.features.context import WINDOW
+
+    decls = "".join(f"  a{i} : DINT;\n" for i in range(WINDOW // 10))
+    text = "VAR\n" + decls + "  last : |"
+    assert ctx(text).where is Where.TYPE  # the VAR opened more than WINDOW characters back
