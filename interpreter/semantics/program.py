@@ -142,7 +142,14 @@ def resolve_typeref(
 ) -> DataType | None:
     base = types.get(ref.name)
     if base is None:
-        diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
+        # Studio exports `DataType="NULL"` for a member whose type it could not resolve: the
+        # data type does not verify in Studio either (decision 0074)
+        what = (
+            "no data type: Studio writes NULL where the member's type is undefined"
+            if ref.name.upper() == "NULL"
+            else f"unknown data type '{ref.name}'"
+        )
+        diags.append(diag("E119", what, path, ref.span))
         return None
     if not ref.dims:
         return base
