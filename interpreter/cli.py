@@ -329,7 +329,7 @@ def _write_plot(
     for j, (name, _, t) in enumerate(watches, start=1):
         if not isinstance(t, Elementary):
             continue  # structures and strings are not drawn
-        kind = "bool" if t.is_bool else "int" if t.is_integer else "real"
+        kind = "bool" if t.is_bool else "int" if t.is_integer or t.is_time else "real"
         series.append(Series(name, [float(r[j]) for r in rows], kind))  # type: ignore[arg-type]
     data = PlotData(
         ", ".join(p.name for p in programs),

@@ -293,7 +293,9 @@ class RoutineCompiler:
         inputs, returns = args[2 : 2 + count], args[2 + count :]
         params = sbr_params(routine, self.a)
         saved, self.site_span = self.site_span, span  # parameter places live in the callee's file
-        if len(inputs) != len(params):
+        if len(inputs) < len(params):
+            # 1756-RM003: a JSR with fewer input parameters than the SBR faults (4/31); more
+            # are allowed, the extra ones are not received (decision 0073)
             self.emit(
                 Op.FAULT,
                 (
@@ -303,6 +305,7 @@ class RoutineCompiler:
                 ),
                 span,
             )
+        inputs = inputs[: len(params)]
         temps = []
         for e, p in zip(inputs, params, strict=False):  # evaluate every input before storing any
             k = self.temp()

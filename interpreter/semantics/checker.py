@@ -17,6 +17,7 @@ from stdlib import Instruction, Operand, catalog
 from ..diagnostics import Diagnostic, diag
 from ..instructions.registry import LOWERED, has_implementation
 from ..syntax import nodes as n
+from . import time_types
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
 from .program import ProgramModel, Tag, const_number, module_tag_note, scoped_programs
@@ -82,6 +83,8 @@ def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
             if a == "ANY_NUM" and (t.is_integer or t.is_real):
                 return True
             if a == "ANY_BIT" and (t.is_integer or t.is_bool):
+                return True
+            if a == "ANY_TIME" and t.is_time:
                 return True
         elif isinstance(t, StructType):
             if a == t.name or (a == "AXIS" and is_axis(t)):
@@ -569,6 +572,11 @@ class Checker(LadderChecks):
             )
         if tt is None or vt is None:
             return
+        if isinstance(tt, Elementary) and isinstance(vt, Elementary) and (tt.unit or vt.unit):
+            why = time_types.assignable(tt, vt, isinstance(s.value, n.Literal))
+            if why is not None:
+                self.err("E121", why, s.value.span)
+            return
         self.check_assignable(tt, vt, s.value.span)
 
     def check_assignable(self, tt: DataType, vt: DataType, span: n.Span) -> None:
@@ -810,6 +818,15 @@ class Checker(LadderChecks):
                     self.operand(ins, checks[-1], e)
         if ins.family == "compare" and given >= 2:
             self.compare_kinds(ins, args)
+        types = [self.a.type_of.get(id(e)) for e in args]
+        if any(isinstance(t, Elementary) and t.unit for t in types):  # decision 0072
+            why = time_types.instruction_error(
+                ins.name,
+                [t if isinstance(t, Elementary) else None for t in types],
+                [isinstance(e, n.Literal) for e in args],
+            )
+            if why is not None:
+                self.err("E105", why, span)
         if rule is not None and not rule.operands:
             rule.fn(self, ins, args, checks)
 
@@ -1192,6 +1209,9 @@ class Checker(LadderChecks):
                 e.span,
             )
             return None
+        if t.unit and (e.op == "NOT" or t.absolute):  # decision 0072: '-' negates a duration
+            self.err("E121", f"{e.op} cannot be applied to {t}", e.span)
+            return None
         if e.op == "NOT":
             if t.is_real:
                 self.err("E121", "NOT needs BOOL or an integer, not a REAL", e.span)
@@ -1291,6 +1311,14 @@ class Checker(LadderChecks):
             self.err("E121", f"'{e.op}' cannot be applied to {bad}", e.span)
             return None
         op = e.op
+        if lt.unit or rt.unit:  # time and date types (decision 0072)
+            r = time_types.binary_type(
+                op, lt, rt, isinstance(e.left, n.Literal), isinstance(e.right, n.Literal)
+            )
+            if isinstance(r, str):
+                self.err("E121", r, e.span)
+                return None
+            return BOOL if op in ("=", "<>", "<", "<=", ">", ">=") else r
         if op in ("=", "<>", "<", "<=", ">", ">="):
             return BOOL
         if op in ("AND", "OR", "XOR"):

@@ -153,7 +153,14 @@ def resolve_typeref(
                 )
             )
             return types.declare_unknown(ref.name)  # one U306 per type (decision 0056)
-        diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
+        # Studio exports `DataType="NULL"` for a member whose type it could not resolve: the
+        # data type does not verify in Studio either (decision 0074)
+        what = (
+            "no data type: Studio writes NULL where the member's type is undefined"
+            if ref.name.upper() == "NULL"
+            else f"unknown data type '{ref.name}'"
+        )
+        diags.append(diag("E119", what, path, ref.span))
         return unknown_type(ref.name)
     if isinstance(base, StructType) and base.unknown:
         return base  # already reported; an array of it accepts any use as well

@@ -23,10 +23,19 @@ class Elementary:
     bits: int
     signed: bool
     rank: int
+    # Time and date types (v36+, decision 0072): integers underneath (microseconds or
+    # nanoseconds), but not integers to the checker: only the few operations Logix documents
+    # take them. "" for every other type; else the unit, "us" or "ns".
+    unit: str = ""
+    absolute: bool = False  # DT and LDT: a point in time; TIME, TIME32, LTIME: a duration
 
     @property
     def is_integer(self) -> bool:
-        return self.kind is Kind.INT
+        return self.kind is Kind.INT and not self.unit
+
+    @property
+    def is_time(self) -> bool:
+        return bool(self.unit)
 
     @property
     def is_real(self) -> bool:
@@ -55,9 +64,18 @@ LINT = Elementary("LINT", Kind.INT, 64, True, 7)
 ULINT = Elementary("ULINT", Kind.INT, 64, False, 8)
 REAL = Elementary("REAL", Kind.REAL, 32, True, 9)
 LREAL = Elementary("LREAL", Kind.REAL, 64, True, 10)
+# Time and date types (Logix v36+): signed counts of microseconds or nanoseconds; DT and LDT
+# count from 1970-01-01 00:00 UTC. Their rank is LINT's: they are never promoted to.
+TIME32 = Elementary("TIME32", Kind.INT, 32, True, 7, "us")
+TIME = Elementary("TIME", Kind.INT, 64, True, 7, "us")
+LTIME = Elementary("LTIME", Kind.INT, 64, True, 7, "ns")
+DT = Elementary("DT", Kind.INT, 64, True, 7, "us", absolute=True)
+LDT = Elementary("LDT", Kind.INT, 64, True, 7, "ns", absolute=True)
+TIME_TYPES = (TIME32, TIME, LTIME, DT, LDT)
 
 ELEMENTARY: dict[str, Elementary] = {
-    t.name: t for t in (BOOL, SINT, USINT, INT, UINT, DINT, UDINT, LINT, ULINT, REAL, LREAL)
+    t.name: t
+    for t in (BOOL, SINT, USINT, INT, UINT, DINT, UDINT, LINT, ULINT, REAL, LREAL, *TIME_TYPES)
 }
 
 
@@ -142,6 +160,10 @@ def promote(a: Elementary, b: Elementary) -> Elementary:
     """Operation type of a binary arithmetic operation (SPEC 3.3 rank order)."""
     if a is BOOL and b is BOOL:
         return BOOL
+    if a.unit or b.unit:
+        # a time or date type meets its own type or LINT (semantics/time_types.py): compared
+        # and computed as the 64-bit count it is, TIME32 sign-extended
+        return LINT
     a = DINT if a is BOOL else a
     b = DINT if b is BOOL else b
     return a if a.rank >= b.rank else b

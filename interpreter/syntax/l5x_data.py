@@ -31,7 +31,14 @@ ELEMENTARY = {
     "ULINT",
     "REAL",
     "LREAL",
+    "TIME32",
+    "TIME",
+    "LTIME",
+    "DT",
+    "LDT",
 }
+# Types whose values do not fit a DINT literal
+_WIDE = frozenset(("LINT", "ULINT", "UDINT", "TIME", "LTIME", "DT", "LDT"))
 
 
 @dataclass(slots=True)
@@ -78,6 +85,32 @@ def parse_date_time(text: str) -> int | None:
     return seconds * 10**digits + int(frac.ljust(digits, "0") or "0")
 
 
+# `T#-2h_3m_4s_1us` (TIME, Radix "Time (us)"), `T32#35m_47s_483ms_647us` (TIME32),
+# `LT#10d_7h_35m_47s_621us_879ns` (LTIME, nanoseconds): a signed duration written as parts
+# from days down to the type's unit, joined by `_` (decision 0072).
+_DURATION = re.compile(
+    r"(LT|T32|T)#([+-]?)(\d+(?:d|h|ms|m|s|us|ns)(?:_?\d+(?:d|h|ms|m|s|us|ns))*)", re.IGNORECASE
+)
+_PART = re.compile(r"(\d+)(d|h|ms|m|s|us|ns)", re.IGNORECASE)
+_NS = {"d": 86_400 * 10**9, "h": 3_600 * 10**9, "m": 60 * 10**9, "s": 10**9}
+_NS.update({"ms": 10**6, "us": 10**3, "ns": 1})
+
+
+def parse_duration(text: str) -> int | None:
+    """The count a `T#` / `T32#` (microseconds) or `LT#` (nanoseconds) value stands for; None
+    if malformed or finer than the type's unit."""
+    m = _DURATION.fullmatch(text.strip().replace(" ", ""))
+    if m is None:
+        return None
+    prefix, sign, body = m.groups()
+    ns = sum(int(k) * _NS[u.lower()] for k, u in _PART.findall(body))
+    if prefix.upper() != "LT":
+        if ns % 1000:
+            return None  # nanoseconds in a microsecond type
+        ns //= 1000
+    return -ns if sign == "-" else ns
+
+
 def parse_value(text: str, radix: str, dtype: str) -> int | float | None:
     """A decorated `Value` attribute in its `Radix` (Decimal, Hex, Binary, Octal, ASCII, Float,
     Date/Time...)."""
@@ -87,6 +120,8 @@ def parse_value(text: str, radix: str, dtype: str) -> int | float | None:
     up = t.upper()
     if up.startswith(("DT#", "LDT#")):
         return parse_date_time(t)
+    if up.startswith(("T#", "LT#", "T32#")):
+        return parse_duration(t)
     if dtype in ("REAL", "LREAL") or radix in ("Float", "Exponential"):
         # v17-v20 exports print non-finite REALs the C runtime's way: `1.#QNAN`, `-1.#IND`
         # (NaN) and `1.$` (+INF, the raw bytes 16#7F80_0000 show it; decision 0045)
@@ -125,7 +160,7 @@ class DataReader:
         typ = (
             "REAL" if isinstance(value, float) else "STRING" if isinstance(value, bytes) else "DINT"
         )
-        if dtype in ("LINT", "ULINT", "UDINT") and isinstance(value, int):
+        if dtype in _WIDE and isinstance(value, int):
             typ = "LINT"
         return n.Literal(value, typ, text, self.span(e))
 
@@ -465,6 +500,8 @@ def _l5k_number(word: str) -> int | float | None:
     up = word.upper()
     if up.startswith(("DT#", "LDT#")):
         return parse_date_time(word)
+    if up.startswith(("T#", "LT#", "T32#")):
+        return parse_duration(word)
     if "INF" in up or "NAN" in up:
         return parse_value(word, "Float", "REAL")
     neg = word.startswith("-")

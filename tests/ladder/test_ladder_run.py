@@ -486,12 +486,43 @@ def test_st_calls_a_ladder_subroutine(st: Runner) -> None:
     assert r.tags == {"w": 42}
 
 
-def test_jsr_parameter_count_mismatch_faults_4_31(st: Runner) -> None:
-    main = st.write("main.rll", "VAR a, b, p : DINT; END_VAR\nJSR(sub, 2, a, b);\n")
-    st.write("sub.rll", "SBR(p);\nNOP();\n")
+def test_jsr_with_fewer_inputs_than_the_sbr_faults_4_31(st: Runner) -> None:
+    # 1756-RM003: "JSR instruction has fewer input parameters than SBR instruction" is a
+    # major fault, type 4 code 31 (decision 0073)
+    main = st.write("main.rll", "VAR a, p, q : DINT; END_VAR\nJSR(sub, 1, a);\n")
+    st.write("sub.rll", "SBR(p, q);\nNOP();\n")
     r = st.cli("run", str(main), str(st.tmp / "sub.rll"), "--json")
     assert r.code == 3
     assert [(f["type"], f["code"], f["line"]) for f in r.json["faults"]] == [(4, 31, 2)]
+
+
+def test_jsr_inputs_beyond_the_sbr_are_not_received(st: Runner) -> None:
+    # More inputs than the SBR takes is no fault: the SBR receives the first ones, the others
+    # are dropped; a routine without SBR receives none (Rockwell's ControllerLogServices
+    # sample calls `JSR(Initialize,1,ControllerSlot,Messages_OK)` with no SBR in Initialize).
+    main = st.write(
+        "main.rll",
+        "VAR a : DINT := 5; b : DINT := 9; p, q, r : DINT; END_VAR\n"
+        "JSR(sub, 2, a, b);\nJSR(plain, 1, a, r);\n",
+    )
+    st.write("sub.rll", "SBR(p);\nADD(p, 1, q);\n")
+    st.write("plain.rll", "RET(7);\n")
+    r = st.cli(
+        "run",
+        str(main),
+        str(st.tmp / "sub.rll"),
+        str(st.tmp / "plain.rll"),
+        "--json",
+        "--watch",
+        "p",
+        "--watch",
+        "q",
+        "--watch",
+        "r",
+    )
+    assert r.code == 0, r.err
+    # p receives a = 5 (b is dropped), q = 5 + 1 = 6; plain's RET(7) still comes back into r
+    assert r.tags == {"p": 5, "q": 6, "r": 7}
 
 
 # ------------------------------------------------------------------ FAL / FSC
