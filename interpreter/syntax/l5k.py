@@ -517,11 +517,13 @@ class _Reader:
             mname, mtype = e.get("Name").strip(), e.get("DataType").strip().upper()
             if not mname or not mtype:
                 return ""
-            dims = int(e.get("Dimension") or "0") if (e.get("Dimension") or "0").isdigit() else 0
+            dim, bit = e.get("Dimension").strip() or "0", e.get("BitNumber").strip() or "0"
+            if not dim.isdigit() or not bit.isdigit():
+                return ""  # not a layout we can read: the module stays without its I/O tags
+            dims = int(dim)
             hidden = e.get("Hidden").lower() in ("1", "true")
             if mtype == "BIT":
-                bit = e.get("BitNumber")
-                raw.append(RawMember(mname, "BIT", 0, False, e.get("Target"), int(bit or 0)))
+                raw.append(RawMember(mname, "BIT", 0, False, e.get("Target"), int(bit)))
                 mtype = "BOOL"  # a bit of its target member, shown as a BOOL (as Decorated data)
             else:
                 raw.append(RawMember(mname, mtype, dims, hidden))

@@ -70,3 +70,38 @@ def test_connection_data_are_the_initial_values(capsys: pytest.CaptureFixture[st
     # 600 + 10 per scan = 630 after 3 scans; Stop := Run copies the set bit
     out = tags["Pump:O"]
     assert (out["Run"], out["SpeedRef"], out["Stop"]) == (True, 630, True)
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        # escaped XML that is not well-formed, a bit number that is not a number, a member
+        # without a type: the layout cannot be read, so no type and no I/O tag (no traceback)
+        ("&lt;/Members&gt;&lt;/DataType&gt;</InputDataTag>", "&lt;/Members&gt;</InputDataTag>"),
+        ("BitNumber=$Q2$Q", "BitNumber=$Qtwo$Q"),
+        ("Name=$QSpeed$Q DataType=$QINT$Q", "Name=$QSpeed$Q"),
+    ],
+)
+def test_unreadable_layouts_declare_nothing(tmp_path: Path, old: str, new: str) -> None:
+    text = MODULE_DATA.read_text()
+    assert text.count(old) == 1
+    path = tmp_path / "bad_layout.L5K"
+    path.write_text(text.replace(old, new))
+    p, diags = read_l5k(path.read_bytes(), str(path))
+    assert diags == [] and p is not None
+    assert [t.name for t in p.types] == ["AB:Example_Drive:O:0"]
+    assert [d.names[0][0] for d in p.tags if ":" in d.names[0][0]] == ["Pump:O"]
+
+
+def test_connection_data_that_does_not_parse_is_one_diagnostic(tmp_path: Path) -> None:
+    # `InputData (...)` not followed by `:=`: one S008 where the value stands (line 40, after
+    # the attribute list's `)`), the rest of the file read
+    text = MODULE_DATA.read_text().replace(":= [0,5,1200];", "[0,5,1200];")
+    path = tmp_path / "bad_data.L5K"
+    path.write_text(text)
+    p, diags = read_l5k(path.read_bytes(), str(path))
+    assert p is not None
+    assert [(d.code, d.span.line, d.message) for d in diags] == [
+        ("S008", 40, "expected ':=' after InputData, found '[0,5,1200];'")
+    ]
+    assert [prog.name for prog in p.programs] == ["MainProgram"]
