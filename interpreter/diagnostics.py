@@ -78,6 +78,7 @@ _TABLE: list[tuple[str, str]] = [
     ("U303", "system attribute not simulated"),
     ("U304", "instruction recognised but not executable yet"),
     ("U305", "alias tag not simulated"),
+    ("U306", "module data not in the export"),
 ]
 
 # U (recognised, not simulated) is a warning: `check` passes and `run` runs what it can (SPEC 9.32).

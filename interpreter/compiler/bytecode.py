@@ -15,6 +15,7 @@ Places:
 Values:
   CONST v type        push a constant
   SYS name            push a system flag (S:FS ...)
+  SYSPLACE name       push the place of a status flag (ladder OTU(S:V) writes it)
   SETSYS (name, v)    set the controller flag `name` to v (ladder FOR/BRK: the break flag)
   LOAD type           pop place, push its value
   STORE type          pop value, pop place, convert the value to `type` and store it
@@ -80,6 +81,7 @@ class Op(Enum):
     IBIT = "IBIT"
     CONST = "CONST"
     SYS = "SYS"
+    SYSPLACE = "SYSPLACE"
     SETSYS = "SETSYS"
     LOAD = "LOAD"
     STORE = "STORE"

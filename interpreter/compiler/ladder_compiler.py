@@ -224,6 +224,8 @@ class LadderCompiler(RoutineCompiler):
     def instruction(self, ins: n.LadderInstr, depth: int) -> None:  # noqa: C901
         cat = self.catalog_entry(ins)
         assert cat is not None, f"unchecked ladder instruction {ins.name}"
+        if id(ins) in self.a.unsimulated:
+            return  # uses a tag that is not simulated (U306): the rung condition passes on
         name = cat.name
         ops = ins.operands
         self.site_span = ins.span  # faults inside an instruction point at the instruction
@@ -360,6 +362,10 @@ class LadderCompiler(RoutineCompiler):
         (decision 0025)."""
         t = self.type_of(dest)
         self.place(dest)
+        if isinstance(t, StructType):  # MOV of a string (tag or literal): as ST's s := 'text'
+            self.value(src, t)
+            self.emit(Op.STORE, t, span)
+            return
         if isinstance(src, n.Literal) and isinstance(src.value, float) and t is LREAL:
             self.emit(
                 Op.CONST, (src.value, LREAL)
@@ -563,7 +569,7 @@ class LadderCompiler(RoutineCompiler):
         for rung in rungs:
             for ins in rung_instructions(rung.elements):
                 cat = self.catalog_entry(ins)
-                if cat is None:
+                if cat is None or id(ins) in self.a.unsimulated:  # U306/U305: not executed
                     continue
                 self.site_span = ins.span
                 ops = ins.operands

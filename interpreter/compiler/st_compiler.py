@@ -69,6 +69,8 @@ class RoutineCompiler:
             self.stmt(s)
 
     def stmt(self, s: n.Stmt) -> None:
+        if id(s) in self.a.unsimulated:  # uses a tag that is not simulated (U306): skipped
+            return
         if isinstance(s, n.Assign):
             self.place(s.target)
             self.value(s.value, self.type_of(s.target))
@@ -344,6 +346,9 @@ class RoutineCompiler:
 
     # ------------------------------------------------------------ expressions
     def place(self, e: n.Expr) -> None:
+        if isinstance(e, n.Name) and id(e) in self.a.system_of:  # OTU(S:V) in ladder
+            self.emit(Op.SYSPLACE, self.a.system_of[id(e)])
+            return
         if isinstance(e, n.Name):
             tag = self.a.tag_of[id(e)]
             self.emit(Op.TAG, tag.slot)
@@ -453,6 +458,8 @@ class RoutineCompiler:
         main_ops = self.ops
         self.ops = self.code.prescan
         for s in _walk(body):
+            if id(s) in self.a.unsimulated:  # uses a tag that is not simulated (U306)
+                continue
             if isinstance(s, n.Assign) and s.nonretentive:
                 t = self.type_of(s.target)
                 self.place(s.target)

@@ -241,6 +241,8 @@ class Controller:
             expr = parse_expression(text.strip())
         except ValueError as exc:
             raise WatchError(str(exc)) from None
+        if isinstance(expr, n.Literal) and expr.type == "BOOL" and expr.text.isalpha():
+            expr = n.Name(expr.text, expr.span)  # a tag named TRUE or FALSE (decision 0054)
         if not isinstance(expr, n.Name | n.Member | n.Index | n.Bit | n.IndirectBit):
             raise WatchError(f"'{text}' is not a tag reference")
         expr = _qualify(expr)

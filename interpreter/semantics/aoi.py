@@ -25,7 +25,7 @@ from ..syntax.l5x import AliasDecl, AoiDecl
 from .alias import AliasRequest, resolve_aliases
 from .ladder_check import rung_instructions
 from .program import Tag, const_number, resolve_typeref
-from .types import BOOL, ArrayType, DataType, Elementary, StructType, TypeTable
+from .types import BOOL, ArrayType, DataType, Elementary, StructType, TypeTable, is_unknown
 
 SCAN_ROUTINES = ("LOGIC", "PRESCAN", "ENABLEINFALSE", "POSTSCAN")
 COMPILED_ROUTINES = ("LOGIC", "ENABLEINFALSE")  # the scan modes the controller runs
@@ -102,8 +102,6 @@ def _define(
     operands = [Operand("Instance", (st.name,), "tag", "inout", doc=f"{decl.name} instance tag")]
     for p in decl.params:
         t = resolve_typeref(types, p.decl.type, path, diags)
-        if t is None:
-            continue
         sp = p.decl.names[0][1]
         key = p.name.upper()
         if key in aoi.tags:
@@ -131,8 +129,6 @@ def _define(
         t = resolve_typeref(types, d.type, path, diags)
         for lname, sp in d.names:
             key = lname.upper()
-            if t is None:
-                continue
             if key in aoi.tags:
                 diags.append(diag("E117", f"local tag '{lname}' is already declared", path, sp))
                 continue
@@ -223,7 +219,9 @@ def _alias_params(
 
 def _operand(p: AoiParam) -> Operand:
     t = p.type
-    if isinstance(t, Elementary) and p.usage != "InOut":
+    if is_unknown(t):  # reported where declared (E119/U306): any argument goes
+        types: tuple[str, ...] = ("ANY",)
+    elif isinstance(t, Elementary) and p.usage != "InOut":
         # Input/Output arguments of another elementary type are converted, as Logix does.
         types = ("ANY_ELEMENTARY",)
     else:
@@ -235,6 +233,8 @@ def _operand(p: AoiParam) -> Operand:
 
 def same_shape(arg: DataType, param: DataType) -> bool:
     """An InOut argument must have the parameter's type (arrays: element type and dimensions)."""
+    if is_unknown(param):
+        return True  # the parameter's type is reported where declared
     if isinstance(param, ArrayType):
         return (
             isinstance(arg, ArrayType)

@@ -20,6 +20,7 @@ from ..syntax import nodes as n
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
 from .program import ProgramModel, Tag, const_number, module_tag_note, scoped_programs
+from .suggest import NameIndex
 from .types import (
     BOOL,
     DINT,
@@ -31,6 +32,7 @@ from .types import (
     Elementary,
     StructType,
     is_axis,
+    is_unknown,
     promote,
 )
 
@@ -81,6 +83,9 @@ class Analysis:
     tag_of: dict[int, Tag] = field(default_factory=dict)
     system_of: dict[int, str] = field(default_factory=dict)
     diags: list[Diagnostic] = field(default_factory=list)
+    # statements and ladder instructions that use a tag which is not simulated (U306: module
+    # data not in the export): they do not execute (SPEC 9.32), the rung condition passes on
+    unsimulated: set[int] = field(default_factory=set)
 
 
 def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
@@ -152,14 +157,26 @@ def cam_points(init: n.ArrayInit) -> list[tuple[float, float, int]]:
 
 
 def int_literal_for_real(e: n.Expr, t: DataType, accepted: tuple[str, ...]) -> bool:
-    """An integer literal given where only REAL/LREAL (not its own type) is accepted."""
+    """An integer (literal or tag) given for an input that takes only REAL/LREAL: Logix
+    converts it (SPEC 9.15 for literals, decision 0054 for tags), so it is passed as a REAL."""
     return (
-        isinstance(const_number(e), int)
-        and isinstance(t, Elementary)
+        isinstance(t, Elementary)
         and t.is_integer
         and not type_matches(t, accepted)
         and any(a in ("REAL", "LREAL", "ANY_REAL") for a in accepted)
     )
+
+
+INTEGERS = frozenset(name for name, t in ELEMENTARY.items() if t.is_integer)
+
+
+def converted_inputs(ins: Instruction, op: Operand, accepted: frozenset[str]) -> frozenset[str]:
+    """The elementary types an input operand takes once Logix's conversions are counted
+    (decision 0054): any integer where a number is taken (a DINT for MAM's REAL Speed, an INT
+    for COP's DINT Length)."""
+    if op.dir != "in" or op.enum is not None or not accepted - {"BOOL"}:
+        return accepted
+    return accepted | INTEGERS
 
 
 def describe(t: DataType | None) -> str:
@@ -197,6 +214,7 @@ class _OperandCheck:
             or fmt in ("routine", "label", "array", "task")
             or op.nullable
             or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
+            or op.types == ("MODULE",)
         )
         return _OperandCheck(
             op,
@@ -206,7 +224,7 @@ class _OperandCheck:
             fmt in ("tag", "memory"),
             fmt == "immediate",
             op.dir in ("out", "inout") and fmt != "immediate",
-            _elementary_accepted(op.types),
+            converted_inputs(ins, op, _elementary_accepted(op.types)),
         )
 
 
@@ -252,6 +270,10 @@ class Checker(LadderChecks):
         self._visible: dict[str, Tag | None] = self._visible_cache()
         self._plans: dict[tuple[str, str], _Plan] = {}  # (name as written, language) -> plan
         self._literal_types: dict[str, DataType | None] = {}  # Literal.type -> its data type
+        self._modules_reported: set[str] = set()  # U306 given for these modules (upper prefix)
+        self._vague = False  # the statement or instruction being checked uses such a tag
+        self._name_index: dict[tuple[str | None, str | None], NameIndex] = {}  # per scope
+        self._hints: dict[str, str] = {}  # unknown instruction name -> its did-you-mean
 
     @property
     def scope(self) -> str | None:
@@ -353,6 +375,8 @@ class Checker(LadderChecks):
                     break
 
     def check_init(self, init: n.Init, t: DataType) -> None:
+        if is_unknown(t):
+            return  # the type is reported where declared; its data cannot be verified
         if isinstance(init, n.ArrayInit) and is_cam_profile_array(t):
             self.cam_profile_init(init, t)
             return
@@ -461,14 +485,19 @@ class Checker(LadderChecks):
             self.stmt(s)
 
     def stmt(self, s: n.Stmt) -> None:
+        self._vague = False
         if isinstance(s, n.Assign):
             self.assign(s)
+            self.settle(s)
         elif isinstance(s, n.CallStmt):
             self.call_stmt(s.call)
+            self.settle(s)
         elif isinstance(s, n.If):
             self.guard_depth += 1
             for cond, body in s.branches:
+                self._vague = False
                 self.condition(cond)
+                self.settle(s)
                 self.stmts(body)
             if s.else_body is not None:
                 self.stmts(s.else_body)
@@ -479,15 +508,25 @@ class Checker(LadderChecks):
             self.for_loop(s)
         elif isinstance(s, n.While):
             self.condition(s.cond)
+            self.settle(s)
             self.loop_body(s.body)
         elif isinstance(s, n.Repeat):
             self.loop_body(s.body)
+            self._vague = False
             self.condition(s.cond)
+            self.settle(s)
         elif isinstance(s, n.Exit):
             if self.loop_depth == 0:
                 self.err("E127", "EXIT is only allowed inside FOR, WHILE or REPEAT", s.span)
         elif isinstance(s, n.Unsupported):
             self.err("E115", f"{s.keyword} is not part of Logix Structured Text", s.span)
+
+    def settle(self, s: n.Stmt) -> None:
+        """Mark `s` as not executed when what was just checked of it uses a tag that is not
+        simulated (its condition, for IF/CASE/loops: the whole statement is skipped)."""
+        if self._vague:
+            self.a.unsimulated.add(id(s))
+            self._vague = False
 
     def loop_body(self, body: list[n.Stmt]) -> None:
         self.loop_depth += 1
@@ -503,6 +542,7 @@ class Checker(LadderChecks):
 
     def case(self, s: n.Case) -> None:
         t = self.expr(s.selector)
+        self.settle(s)
         if t is not None and not (isinstance(t, Elementary) and (t.is_integer or t.is_bool)):
             self.err("E121", f"a CASE selector must be an integer, not {t}", s.selector.span)
         self.guard_depth += 1
@@ -530,6 +570,7 @@ class Checker(LadderChecks):
                 et = self.expr(e)
                 if et is not None and not (isinstance(et, Elementary) and et.is_numeric):
                     self.err("E121", f"FOR bounds must be numbers, not {et}", e.span)
+        self.settle(s)
         self.for_vars.append(_text(s.var).upper())
         self.loop_body(s.body)
         self.for_vars.pop()
@@ -583,6 +624,10 @@ class Checker(LadderChecks):
     def call_stmt(self, c: n.Call) -> None:
         tag = self.lookup(c.name)
         if tag is not None and isinstance(tag.type, StructType):
+            if tag.type.unknown:  # a block of a type reported where declared: no cascade
+                for a in c.args:
+                    self.loose(a.value)
+                return
             ins = self.cat.instruction(tag.type.name, "st")
             if ins is not None:
                 self.fb_call(c, tag, ins)
@@ -591,7 +636,30 @@ class Checker(LadderChecks):
         self.instruction(c, c.name, c.name_span, c.span, [a.value for a in c.args], named)
 
     def ladder_instr(self, i: n.LadderInstr) -> None:
-        self.instruction(i, i.name, i.name_span, i.span, i.operands, None)
+        ops = i.operands
+        for k, e in enumerate(ops):
+            if (e.__class__ is n.Literal and e.type == "BOOL") or (  # type: ignore[attr-defined]
+                e.__class__ is n.Name and e.ident.upper() in ("TRUE", "FALSE")  # type: ignore[attr-defined]
+            ):
+                ops[k] = self.bool_tag(e)  # type: ignore[arg-type]
+        self._vague = False
+        self.instruction(i, i.name, i.name_span, i.span, ops, None)
+        if self._vague:
+            self.a.unsimulated.add(id(i))
+
+    def bool_tag(self, e: n.Literal | n.Name) -> n.Expr:
+        """`True` / `False` as a ladder operand: a tag when the project declares one of that name.
+
+        Studio allows tags named TRUE and FALSE, and ladder has no BOOL literals of its own
+        (decision 0054): `OTE(True)` writes the tag. Without such a tag the word is the
+        literal it was read as. The rung's operand list is rewritten either way, so a rung
+        kept between analyses (the language server's parse memo) follows the current tags."""
+        text = e.text if isinstance(e, n.Literal) else e.ident
+        if self.lookup(text) is not None:
+            return e if isinstance(e, n.Name) else n.Name(text, e.span)
+        if isinstance(e, n.Literal):
+            return e
+        return n.Literal(1 if text.upper() == "TRUE" else 0, "BOOL", text, e.span)
 
     def instruction(
         self,
@@ -614,12 +682,13 @@ class Checker(LadderChecks):
                     name_span,
                 )
             else:
-                names = sorted({i.name for i in self.cat.instructions})
-                self.err(
-                    "E103", f"unknown instruction '{name}'{self.suggest(name, names)}", name_span
-                )
+                hint = self._hints.get(name)
+                if hint is None:  # one suggestion per name, however often it is called
+                    names = sorted({i.name for i in self.cat.instructions})
+                    hint = self._hints[name] = self.suggest(name, names)
+                self.err("E103", f"unknown instruction '{name}'{hint}", name_span)
             for e in args:
-                self.expr(e)
+                self.loose(e)
             return
         if ins.kind == "function":
             self.err("E126", f"{ins.name} is a function: use it in an expression", name_span)
@@ -642,6 +711,17 @@ class Checker(LadderChecks):
                     span,
                 )
             )
+
+    def loose(self, e: n.Expr) -> None:
+        """An operand whose expected kind is unknown (the instruction or block was already
+        reported): a word that is not a tag may be an enumeration, so it is not an error."""
+        if isinstance(e, n.Placeholder | n.EnumText):
+            return
+        if _enum_text(e) is not None and not (
+            isinstance(e, n.Name) and (":" in e.ident or self.lookup(e.ident) is not None)
+        ):
+            return
+        self.expr(e)
 
     def plan(self, name: str) -> _Plan:
         """The cached catalog (or AOI) entry of an instruction name in the current language."""
@@ -706,9 +786,15 @@ class Checker(LadderChecks):
     def aoi_arguments(self, name: str, args: list[n.Expr]) -> None:
         """InOut arguments are passed by reference: they need the parameter's exact type."""
         aoi = self.model.aois[name.upper()]
-        for p, e in zip(aoi.required, args[1:], strict=False):  # type: ignore[attr-defined]
+        ops = aoi.instruction.operands[1:]  # type: ignore[attr-defined]
+        for p, op, e in zip(aoi.required, ops, args[1:], strict=False):  # type: ignore[attr-defined]
             t = self.a.type_of.get(id(e))
-            if p.usage == "InOut" and t is not None and not same_shape(t, p.type):
+            if (
+                p.usage == "InOut"
+                and t is not None
+                and type_matches(t, op.types)  # else the operand check said it already
+                and not same_shape(t, p.type)
+            ):
                 name_ = aoi.name  # type: ignore[attr-defined]
                 self.err(
                     "E105", f"{name_} InOut parameter {p.name} needs a {p.type}, not {t}", e.span
@@ -748,6 +834,8 @@ class Checker(LadderChecks):
                     self.operand(ins, checks[-1], e)
         if ins.family == "compare" and given >= 2:
             self.compare_kinds(ins, args)
+        elif ins.name == "MOV" and given >= 2:
+            self.move_kinds(args)
         if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err(
                 "E112", "the master axis must be a different axis from the slave", args[1].span
@@ -764,6 +852,16 @@ class Checker(LadderChecks):
         b_str = isinstance(b, StructType) and b.is_string
         if a_str != b_str:
             self.err("E116", f"{ins.name} cannot compare a STRING with a number", args[1].span)
+
+    def move_kinds(self, args: list[n.Expr]) -> None:
+        """MOV takes a STRING (tag or literal) into a STRING, or a number into a number."""
+        a, b = (self.a.type_of.get(id(e)) for e in args[:2])
+        if a is None or b is None:
+            return
+        a_str = isinstance(a, StructType) and a.is_string
+        b_str = isinstance(b, StructType) and b.is_string
+        if a_str != b_str:
+            self.err("E116", f"MOV cannot move {a} into {b}", args[1].span)
 
     def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
         """U303 for a GSV/SSV class and attribute pair the simulator does not model."""
@@ -822,10 +920,12 @@ class Checker(LadderChecks):
         if not (
             t.name in check.elementary if isinstance(t, Elementary) else type_matches(t, op.types)
         ):
-            if int_literal_for_real(e, t, op.types):
+            if int_literal_for_real(e, t, op.types) and op.dir == "in":
                 return  # SPEC 9.15: integer literals are accepted for REAL operands
             if "BOOL" in op.types and const_number(e) in (0, 1) and not is_tag:
                 return  # an immediate 0/1 for a BOOL operand (PID Inhold bit, ALMD ProgAck)
+            if op.expression and "BOOL" in op.types and isinstance(const_number(e), int):
+                return  # FSC(..., 0): a constant condition, as Studio accepts (decision 0054)
             if any(x == "AXIS" for x in op.types) or is_axis(t):
                 self.err("E113", f"{ins.name} operand {op.name} needs an axis, not {t}", e.span)
             else:
@@ -894,6 +994,14 @@ class Checker(LadderChecks):
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
             self.a.type_of[id(e)] = DINT
             return True
+        if op.types == ("MODULE",) and isinstance(e, n.Name):
+            tag = self.lookup(e.ident)
+            if tag is None or not (isinstance(tag.type, StructType) and tag.type.name == "MODULE"):
+                # a module's name (an AOI's MODULE InOut: `IO_Status(Inst, Rack1, ...)`), not a
+                # tag, even where a tag has the same name (decision 0054)
+                self.a.enum_of[id(e)] = 0
+                self.a.type_of[id(e)] = DINT
+                return True
         if op.nullable and const_number(e) == 0:
             return True  # a literal 0 means the optional array is not used
         if fmt == "array":
@@ -973,6 +1081,26 @@ class Checker(LadderChecks):
                 self.a.type_of[id(e)] = DINT
             return True
         return False
+
+    def suggest_tag(self, ident: str) -> str:
+        """Did-you-mean for an undefined tag: the closest tag visible here (bounded cost)."""
+        if self._aoi is not None:
+            key: tuple[str | None, str | None] = (None, self._aoi.name.upper())
+        else:
+            key = (self._scope.upper() if self._scope is not None else None, None)
+        index = self._name_index.get(key)
+        if index is None:
+            if self._aoi is not None:
+                names = [t.name for t in self._aoi.tags.values()]
+            else:
+                names = [
+                    t.name
+                    for t in self.model.tags.values()
+                    if t.program is None or (key[0] is not None and t.program.upper() == key[0])
+                ]
+            index = self._name_index[key] = NameIndex(names)
+        best = index.best(ident)
+        return f" (did you mean '{best}'?)" if best is not None else ""
 
     @staticmethod
     def suggest(word: str, options: list[str]) -> str:
@@ -1090,6 +1218,8 @@ class Checker(LadderChecks):
             return None
         key = e.name.upper()
         i = bt.index.get(key)  # StructType.member, without upper-casing the name twice
+        if bt.unknown:
+            return None  # (a member of) a type reported where declared: anything goes
         if i is None or key in bt.hidden:
             names = [x for x, _ in bt.members if x.upper() not in bt.hidden]
             self.err(
@@ -1098,7 +1228,11 @@ class Checker(LadderChecks):
                 e.name_span,
             )
             return None
-        return bt.members[i][1]
+        mt = bt.members[i][1]
+        if isinstance(mt, StructType) and mt.unknown:
+            self._vague = True
+            return None
+        return mt
 
     def name(self, e: n.Name) -> DataType | None:
         ident = e.ident
@@ -1114,16 +1248,22 @@ class Checker(LadderChecks):
         if tag is _UNRESOLVED:
             tag = self.lookup(ident)
         if tag is None:
-            pool = self.aoi.tags.values() if self.aoi is not None else self.model.tags.values()
-            names = [t.name for t in pool]
-            self.err(
-                "E101",
-                f"undefined tag '{e.ident}'{module_tag_note(self.model, e.ident) or self.suggest(e.ident, names)}",
-                e.span,
-            )
+            note = module_tag_note(self.model, ident)
+            if note:  # a module's I/O tag: one U306 per module, not an error at each use
+                module = ident.rsplit(":", 1)[0].upper()
+                if module not in self._modules_reported:
+                    self._modules_reported.add(module)
+                    self.err("U306", f"module I/O tag '{ident}'{note}; it is not simulated", e.span)
+                self._vague = True
+                return None
+            self.err("E101", f"undefined tag '{ident}'{self.suggest_tag(ident)}", e.span)
             return None
         self.a.tag_of[id(e)] = tag
-        return tag.type
+        t = tag.type
+        if t.__class__ is StructType and t.unknown:  # type: ignore[union-attr]
+            self._vague = True
+            return None  # its type was reported where declared: its uses are not checked
+        return t
 
     def binary(self, e: n.Binary) -> DataType | None:
         lt = self.expr(e.left)

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic, diag
 from ..syntax import nodes as n
-from .types import ArrayType, DataType, Elementary, StructType, TypeTable
+from .types import ArrayType, DataType, Elementary, StructType, TypeTable, unknown_type
 
 MAX_DIMS = 3
 
@@ -108,8 +108,9 @@ class ProgramModel:
 
 
 def module_tag_note(model: ProgramModel, ident: str) -> str:
-    """Why a module I/O tag name (`Local:3:I`, `Drive1:O`) is undefined: its module's data is not
-    in the export (a connection without Decorated data, or no `<Modules>` section at all)."""
+    """Why a module I/O tag name (`Local:3:I`, `Drive1:O`) has no tag: its module's data is not
+    in the export (a connection without Decorated data, or no such module in `<Modules>`).
+    Empty for a name that is not a module tag's (every other tag name is free of ':')."""
     if ":" not in ident or ident.upper().startswith("PROGRAM:"):
         return ""
     modules: dict[str, str] = model.extra.get("modules", {})  # type: ignore[assignment]
@@ -118,13 +119,11 @@ def module_tag_note(model: ProgramModel, ident: str) -> str:
         project = model.extra.get("l5x")
         if str(getattr(project, "path", "")).lower().endswith(".l5k"):
             # L5K gives connection data as bare values, never the module-defined layout
-            return (
-                f": the layout of module '{module}' data for this I/O tag is not in an .L5K export"
-            )
-        return f": the data of module '{module}' for this I/O tag is not in the export (no Decorated data)"
+            return f": the layout of module '{module}' data is not in an .L5K export"
+        return f": the data of module '{module}' is not in the export (no Decorated data)"
     if "l5x" in model.extra:
-        return ": a module I/O tag, and the module's data is not in the export"
-    return ": a module I/O tag; these exist only in an L5X export holding the module's data"
+        return ": its module is not in the export"
+    return ": module I/O tags exist only in an L5X export holding the module's data"
 
 
 def const_number(e: object) -> int | float | None:
@@ -139,28 +138,42 @@ def const_number(e: object) -> int | float | None:
 
 def resolve_typeref(
     types: TypeTable, ref: n.TypeRef, path: str, diags: list[Diagnostic]
-) -> DataType | None:
+) -> DataType:
+    """The declared type; one that cannot be resolved is reported here, once, and stands in
+    as an unknown type that accepts every use (decision 0054), so nothing cascades."""
     base = types.get(ref.name)
     if base is None:
+        if ":" in ref.name:  # AB:1756_DI:I:0 ...: defined by a module profile, not the export
+            diags.append(
+                diag(
+                    "U306",
+                    f"module-defined data type '{ref.name}' is not described in this export",
+                    path,
+                    ref.span,
+                )
+            )
+            return types.declare_unknown(ref.name)  # one U306 per type (decision 0056)
         diags.append(diag("E119", f"unknown data type '{ref.name}'", path, ref.span))
-        return None
+        return unknown_type(ref.name)
+    if isinstance(base, StructType) and base.unknown:
+        return base  # already reported; an array of it accepts any use as well
     if not ref.dims:
         return base
     if len(ref.dims) > MAX_DIMS:
         diags.append(
             diag("E125", f"at most {MAX_DIMS} array dimensions are allowed", path, ref.span)
         )
-        return None
+        return unknown_type(ref.name)
     sizes = []
     for lo, hi in ref.dims:
         if lo != 0:
             diags.append(diag("E125", f"Logix arrays start at 0, not {lo}", path, ref.span))
-            return None
+            return unknown_type(ref.name)
         if hi < lo:
             diags.append(
                 diag("E125", "array dimension must hold at least one element", path, ref.span)
             )
-            return None
+            return unknown_type(ref.name)
         sizes.append(hi - lo + 1)
     return ArrayType(base, tuple(sizes))
 
@@ -192,7 +205,7 @@ def define_members(
             for mname, mspan in m.names:
                 if st.member(mname) is not None:
                     diags.append(diag("E117", f"member '{mname}' is declared twice", path, mspan))
-                elif mt is not None:
+                else:
                     types.add_member(st, mname, mt)
                     if m.init is not None:
                         value = const_number(m.init)
@@ -228,10 +241,7 @@ def declare_tags(
                     )
                 )
                 continue
-            if t is not None:
-                model.tags[key] = Tag(
-                    tname, t, tspan, path, d.init, program=program, init_path=path
-                )
+            model.tags[key] = Tag(tname, t, tspan, path, d.init, program=program, init_path=path)
 
 
 def build_program(

@@ -19,7 +19,7 @@ from .program import (
     module_tag_note,
     scope_key,
 )
-from .types import ArrayType, DataType, StructType, TypeTable
+from .types import ArrayType, DataType, StructType, TypeTable, unknown_type
 
 
 def build_project(
@@ -157,8 +157,9 @@ def declare_aliases(
     )
     for key, req in requests.items():
         tag = resolved.get(id(req))
-        if tag is not None:
-            model.tags[key] = tag
+        if tag is None:  # reported at the alias (E101/U305...): its uses are not, again
+            tag = Tag(req.name, unknown_type(req.target), req.span, path, program=req.program)
+        model.tags[key] = tag
 
 
 def _prune_inits(decls: list[n.VarDecl], types: TypeTable) -> None:

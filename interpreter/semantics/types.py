@@ -73,6 +73,9 @@ class StructType:
     doc: str = ""
     builtin: bool = True
     group: str = ""
+    # a declared type this tool could not resolve (reported once where declared): uses of a
+    # tag of it accept any member, index, bit and operand, so nothing cascades (decision 0054)
+    unknown: bool = False
 
     @property
     def kind(self) -> Kind:
@@ -120,6 +123,15 @@ class ArrayType:
 
 
 DataType = Elementary | StructType | ArrayType
+
+
+def unknown_type(name: str) -> StructType:
+    """The stand-in for a declared type that could not be resolved (see StructType.unknown)."""
+    return StructType(name, builtin=False, unknown=True)
+
+
+def is_unknown(t: DataType | None) -> bool:
+    return isinstance(t, StructType) and t.unknown
 
 
 def is_axis(t: DataType) -> bool:
@@ -198,6 +210,12 @@ class TypeTable:
 
     def declare_udt(self, name: str) -> StructType:
         st = StructType(name, builtin=False)
+        self._types[name.upper()] = st
+        return st
+
+    def declare_unknown(self, name: str) -> StructType:
+        """Record a type reported as missing, so later references to it are not reported again."""
+        st = unknown_type(name)
         self._types[name.upper()] = st
         return st
 

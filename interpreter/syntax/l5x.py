@@ -9,6 +9,7 @@ diagnostics can name them. Elements this tool does not know are ignored.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, is_dataclass
 from typing import TypeVar
@@ -25,6 +26,7 @@ from .xml_reader import Positions, XElem, XmlRejected, parse_xml
 _T = TypeVar("_T")
 
 ROOT = "RSLogix5000Content"
+_BIT_ALIAS = re.compile(r"\.\d+$")  # an alias for a bit: `_bSts.1`
 
 
 @dataclass(slots=True)
@@ -141,7 +143,9 @@ class ParseMemo:
 
     The language server reads an export again after every change; a rung or ST routine
     whose text and position are unchanged is taken from here instead of being parsed again
-    (nothing downstream mutates the AST). Only the pieces of the last read are kept.
+    (downstream, only the checker rewrites a ladder operand `True`/`False` into the tag or
+    the literal, by the current tags, so a kept rung follows them). Only the pieces of the
+    last read are kept.
     """
 
     previous: dict[tuple[object, ...], object] = field(default_factory=dict)
@@ -236,7 +240,7 @@ class _Reader:
                 if e.tag == "AddOnInstructionDefinition":
                     self.aoi(e)
                 elif e.tag == "EncodedData":
-                    self.encoded(e, "add-on instruction")
+                    self.protected_aoi(e)
         for sec in ctl.all("Tags"):
             tags, aliases = self.tags(sec)
             p.tags.extend(tags)
@@ -399,7 +403,23 @@ class _Reader:
         return None
 
     # ------------------------------------------------------------ add-on instructions
-    def aoi(self, e: XElem) -> None:
+    def protected_aoi(self, e: XElem) -> None:
+        """A source-protected AOI: its parameters are exported in clear, its local tags and
+        routines are encrypted. It is declared from its parameters, so its instance tags and
+        calls check as for any AOI; a call runs no logic (decision 0057)."""
+        if e.get("EncodedType") != "AddOnInstructionDefinition" or e.child("Parameters") is None:
+            self.encoded(e, "add-on instruction")
+            return
+        name = e.get("Name") or "?"
+        self.err(
+            "U302",
+            f"add-on instruction '{name}' is protected (encoded): calls are checked against its"
+            " parameters, and its logic does not run",
+            self.span(e),
+        )
+        self.aoi(e, protected=True)
+
+    def aoi(self, e: XElem, protected: bool = False) -> None:
         name = self.name_of(e, "add-on instruction")
         if name is None:
             return
@@ -412,6 +432,15 @@ class _Reader:
             usage = pe.get("Usage") or "Input"
             required = pe.get("Required").lower() == "true" or usage == "InOut"
             aoi.param_order.append(pname)
+            if pe.get("TagType") == "Alias" and protected:
+                # its target is an encrypted local tag: the parameter stays visible from
+                # outside with its own storage; only a bit alias (`_bSts.1`) shows its type
+                if not _BIT_ALIAS.search(pe.get("AliasFor")):
+                    continue
+                sp = self.span(pe)
+                bit = n.VarDecl([(pname, sp)], n.TypeRef("BOOL", [], sp), None, sp, block="VAR")
+                aoi.params.append(AoiParam(pname, usage, required, bit))
+                continue
             if pe.get("TagType") == "Alias":
                 aoi.aliases.append(
                     AliasDecl(pname, pe.get("AliasFor"), self.span(pe), usage, required)
@@ -434,7 +463,7 @@ class _Reader:
                 r = self.routine(re_, f"add-on instruction {name}")
                 if r is not None:
                     aoi.routines.append(r)
-        if e.child("EncodedData") is not None:
+        if not protected and e.child("EncodedData") is not None:
             self.encoded(e.child("EncodedData"), f"add-on instruction {name}")  # type: ignore[arg-type]
         self.project.aois.append(aoi)
 

@@ -375,6 +375,8 @@ class Translator:
                 if isinstance(value, int) and value < 0:
                     expr = f"({expr})"
             st.append(_Val(expr, t))
+        elif op is Op.SYSPLACE:
+            st.append(_Place("ctx.status", repr(arg)))
         elif op is Op.SYS:
             st.append(
                 _Val("ctx.first_scan" if arg == "FS" else f"ctx.status.get({arg!r}, 0)", BOOL)

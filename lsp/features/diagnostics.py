@@ -24,12 +24,16 @@ class EditorDiagnostic:
     href: str
 
 
-def docs_link(d: Diagnostic) -> str:
+def anchor(code: str) -> str:
+    """The markdown anchor of a code's section (`## E101 undefined tag` -> `e101-undefined-tag`)."""
     from interpreter.diagnostics import REGISTRY
 
-    title = f"{d.code} {REGISTRY[d.code].title}".lower()
-    anchor = "".join(c for c in title if c.isalnum() or c in " -_").replace(" ", "-")
-    return f"{DOCS}#{anchor}"
+    title = f"{code} {REGISTRY[code].title}".lower()
+    return "".join(c for c in title if c.isalnum() or c in " -_").replace(" ", "-")
+
+
+def docs_link(d: Diagnostic) -> str:
+    return f"{DOCS}#{anchor(d.code)}"
 
 
 def to_editor(d: Diagnostic) -> EditorDiagnostic:

@@ -26,8 +26,7 @@ def hover(an: Analysed, line: int, character: int) -> str | None:
     model = an.loaded.model
     program = program_at(an, line + 1)
     if _CODE.match(word) and word in REGISTRY:
-        code = REGISTRY[word]
-        return f"**{code.code}** ({code.severity.value}): {code.title}"
+        return code_markdown(word)
     if text[end : end + 1] == "(" or text[end:].lstrip()[:1] == "(":
         ins = find_instruction(model, word, _language(an))
         if ins is not None:
@@ -94,3 +93,11 @@ def _initial(tag: Tag) -> str:
     if init is not None:
         return "(structure or array initialiser)"
     return ""
+
+
+def code_markdown(code: str) -> str:
+    """A diagnostic code: its severity and title, and the docs section that explains it."""
+    from .diagnostics import DOCS, anchor
+
+    c = REGISTRY[code]
+    return f"**{c.code}** ({c.severity.value}): {c.title}\n\n[explanation, example and fix]({DOCS}#{anchor(code)})"

@@ -8,6 +8,7 @@ import pytest
 from test_project import run  # the same run-and-read-tags helper (tests/l5x is on sys.path)
 
 from interpreter.cli import main
+from interpreter.runtime.loader import load
 from interpreter.semantics.project import build_project
 from interpreter.semantics.types import ArrayType, StructType
 from interpreter.syntax.l5x import read_l5x
@@ -181,20 +182,95 @@ def test_tags_option_brings_module_tags(tmp_path: Path, capsys: pytest.CaptureFi
     assert tags == {"Bits": 8}  # 2#10_1000 AND 2#1111
 
 
-def test_undefined_module_tags_say_the_data_is_not_in_the_export(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_module_tags_without_data_get_one_diagnostic_per_module(tmp_path: Path) -> None:
+    # Rack3_Input (Rack3:2) has only L5K data and xPLC28 is not in <Modules> at all: Studio
+    # knows both from the module profiles, which the export does not hold. Each module is
+    # reported once (U306, decision 0056), however many of its tags and members are used,
+    # and nothing cascades at the uses (members, bits, operands).
     text = MODULES.read_text().replace(
-        "Counts := Rack3:1:I1.Counts;", "Counts := Rack3:2:I.Data + xPLC28:O.Pt08.Data;"
+        "Counts := Rack3:1:I1.Counts;",
+        "Counts := Rack3:2:I.Data + xPLC28:O.Pt08.Data; Counts := Rack3:2:I.Data.3"
+        " + xPLC28:I.Pt00.Data + xPLC28:O.Pt08.Data;",
     )
     path = tmp_path / "missing.L5X"
     path.write_text(text)
-    capsys.readouterr()
-    assert main(["check", str(path)]) == 1
-    out = capsys.readouterr().out.splitlines()
-    assert out[:2] == [
-        f"{path}:237:20: error E101 undefined tag 'Rack3:2:I': the data of module 'Rack3_Input' for this I/O tag"
-        " is not in the export (no Decorated data) (program MainProgram, routine Main, line 4)",
-        f"{path}:237:37: error E101 undefined tag 'xPLC28:O': a module I/O tag, and the module's data is not in"
-        " the export (program MainProgram, routine Main, line 4)",
+    found = [(d.code, d.span.line, d.span.col, d.message) for d in load([path]).diagnostics]
+    assert found == [
+        (
+            "U306",
+            237,
+            20,
+            "module I/O tag 'Rack3:2:I': the data of module 'Rack3_Input' is not in the export"
+            " (no Decorated data); it is not simulated (program MainProgram, routine Main, line 4)",
+        ),
+        (
+            "U306",
+            237,
+            37,
+            "module I/O tag 'xPLC28:O': its module is not in the export; it is not simulated"
+            " (program MainProgram, routine Main, line 4)",
+        ),
     ]
+
+
+def test_uses_of_module_tags_without_data_do_not_execute(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # SPEC 9.32: what uses a tag that is not simulated does not execute. The ST assignment
+    # and the IF on xPLC28:I are skipped, so Counts keeps its exported 0 (instead of 1234
+    # from Rack3:1:I1); on the rung, XIC(Rack3:2:I.Data.0) passes the rung condition on, so
+    # the rung still latches Rack3:O.Data[3].7 (-128 as a signed byte, as in the unchanged run)
+    text = (
+        MODULES.read_text()
+        .replace(
+            "Counts := Rack3:1:I1.Counts;",
+            "Counts [:=] Rack3:2:I.Data; IF xPLC28:I.Fault THEN Counts := 5; END_IF;",
+        )
+        .replace("XIC(Rack3:I.Data[1].2)OTL(", "XIC(Rack3:I.Data[1].2)XIC(Rack3:2:I.Data.0)OTL(")
+        .replace("OTL(Rack3:O.Data[3].7);", "OTL(Rack3:O.Data[3].7)OTE(xPLC28:O.Pt00.Data);")
+    )  # the non-retentive [:=] and the OTE are also left out of the prescan
+    path = tmp_path / "skip.L5X"
+    path.write_text(text)
+    # one U306 per module (Rack3:2 in ST and on the rung, xPLC28), nothing else
+    assert [d.code for d in load([path]).diagnostics] == ["U306", "U306"]
+    tags = run(capsys, path, 1, "Counts", "Rack3:O.Data[3]", "InWord")
+    assert tags == {"Counts": 0, "Rack3:O.Data[3]": -128, "InWord": 40}
+
+
+MISSING_TYPE = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
+<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="34.01" TargetName="T" TargetType="Controller">
+<Controller Use="Target" Name="T" ProcessorType="5069-L320ER" MajorRev="34" MinorRev="11">
+<DataTypes>
+<DataType Name="Station" Family="NoFamily" Class="User"><Members>
+<Member Name="Inputs" DataType="AB:5000_DI16:I:0" Dimension="0" Radix="NullType" Hidden="false"/>
+<Member Name="Count" DataType="DINT" Dimension="0" Radix="Decimal" Hidden="false"/>
+</Members></DataType>
+</DataTypes>
+<Tags>
+<Tag Name="St" TagType="Base" DataType="Station"/>
+<Tag Name="Copies" TagType="Base" DataType="AB:5000_DI16:I:0" Dimensions="2"/>
+<Tag Name="n" TagType="Base" DataType="DINT"><Data Format="Decorated"><DataValue DataType="DINT" Value="7"/></Data></Tag>
+</Tags>
+<Programs><Program Name="Main" MainRoutineName="Logic"><Routines>
+<Routine Name="Logic" Type="ST"><STContent>
+<Line Number="0"><![CDATA[St.Count := St.Inputs.Pt00.Data + Copies[1].Pt03.Data; n := n + 1;]]></Line>
+</STContent></Routine>
+</Routines></Program></Programs>
+<Tasks><Task Name="T" Type="CONTINUOUS" Priority="10" Watchdog="500">
+<ScheduledPrograms><ScheduledProgram Name="Main"/></ScheduledPrograms></Task></Tasks>
+</Controller>
+</RSLogix5000Content>
+"""
+
+
+def test_module_defined_type_missing_is_reported_once(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # AB:5000_DI16:I:0 is used by a UDT member and an array tag, and no module of the file
+    # shows its layout: one U306 (at its first declaration), none at the second or the uses
+    path = tmp_path / "missing_type.L5X"
+    path.write_text(MISSING_TYPE)
+    found = [(d.code, d.span.line) for d in load([path]).diagnostics]
+    assert found == [("U306", 6)]
+    # the assignment that reads them does not execute; the next statement does: n = 7 + 1
+    assert run(capsys, path, 1, "St.Count", "n") == {"St.Count": 0, "n": 8}

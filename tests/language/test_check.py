@@ -100,6 +100,7 @@ FIXTURES: dict[str, tuple[str, str]] = {
     ),
     "W204": ("MSO(ax, mc);\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
     "U303": ("GSV(TASK, THIS, Priority, x);\n", "GSV(TASK, THIS, Rate, x);\n"),
+    "U306": ("x := Local:1:I.Data;\n", "x := x + 1;\n"),
 }
 
 # U304 (recognised, not executable yet) depends on which instructions are implemented today;

@@ -109,3 +109,18 @@ def test_var_block_found_beyond_the_context_window() -> None:
     decls = "".join(f"  a{i} : DINT;\n" for i in range(WINDOW // 10))
     text = "VAR\n" + decls + "  last : |"
     assert ctx(text).where is Where.TYPE  # the VAR opened more than WINDOW characters back
+
+
+def test_hover_on_a_diagnostic_code_links_its_docs_section(tmp_path: Path) -> None:
+    from lsp.features.hover import hover
+
+    ws = Workspace()
+    uri = (tmp_path / "a.st").as_uri()
+    ws.open(uri, "// see E101 in the docs\n")
+    an = ws.analyse(uri)
+    assert an is not None
+    md = hover(an, 0, 8)
+    assert md is not None and md.startswith("**E101** (error): undefined tag")
+    section = md.rsplit("#", 1)[1].rstrip(")")
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "diagnostics.md").read_text()
+    assert "## E101 undefined tag" in docs and section == "e101-undefined-tag"

@@ -99,10 +99,12 @@ def test_cam_profile_initialisers_are_verified(tmp_path, capsys, init: str) -> N
 
 
 def test_integer_literals_are_accepted_for_real_operands(tmp_path, capsys) -> None:
-    # SPEC 9.15; a DINT tag is still not a REAL operand
+    # SPEC 9.15; an integer tag too, as Logix converts it (decision 0054: Rockwell's own
+    # ST_Motion_Example passes DINT tags as MAM Position and Speed); a BOOL is not a number
     good = (
         "IF b THEN MATC(ax, mc, 0, cp, 2, 1, once, immediate, 0, none, timedrivenmode); END_IF;\n"
     )
     assert _check(tmp_path, capsys, HEAD + good) == (0, [])
-    _, diags = _check(tmp_path, capsys, HEAD + good.replace(", 2, 1,", ", d, 1,"))
+    assert _check(tmp_path, capsys, HEAD + good.replace(", 2, 1,", ", d, 1,")) == (0, [])
+    _, diags = _check(tmp_path, capsys, HEAD + good.replace(", 2, 1,", ", b, 1,"))
     assert [x["code"] for x in diags] == ["E105"]
