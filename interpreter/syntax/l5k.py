@@ -9,8 +9,9 @@ over hidden SINTs, tags whose initialisers come from their L5K data (the data pa
 reader uses for its L5K fallback), AOIs, programs, ST routines (the `'` lines joined with
 newlines), ladder rungs (`N: text;`, `RC: "comment";`) and tasks. Spans are positions in the
 .L5K file; `context` names program / routine / rung or ST line like the L5X reader does.
-Blocks the model has no place for (CONFIG, TREND, QUICK_WATCH, PARAMETER_CONNECTION, module
-connection data ...) are skipped to their END_ keyword (decision 0048).
+Blocks the model has no place for (CONFIG, TREND, QUICK_WATCH, PARAMETER_CONNECTION ...) are
+skipped to their END_ keyword (decision 0048); module connection data declare I/O tags only
+where the MODULE block shows their layout (decision 0070).
 """
 
 from __future__ import annotations
