@@ -14,7 +14,7 @@ from pathlib import Path
 _ROOT = Path(__file__).parent
 
 OPERAND_FORMATS = frozenset(
-    {"tag", "immediate", "value", "array", "memory", "routine", "label", "task"}
+    {"tag", "immediate", "value", "array", "memory", "routine", "label", "task", "object"}
 )
 OPERAND_DIRS = frozenset({"in", "out", "inout"})
 
@@ -84,6 +84,12 @@ class Instruction:
     input: bool = False  # ladder input instruction: it can make the rung condition false
     # Why the simulator does not execute it (U304 names this reason); "" when it runs.
     unsupported: str = ""
+    # A rule of this instruction beyond its operand table: the name of a check in
+    # semantics/checker.py INSTRUCTION_CHECKS ("" for none); completion and hover read the
+    # same entry, so no tool has its own `if name == ...`.
+    check: str = ""
+    # kind = "function": the result type when it is not the argument's (REAL, BOOL).
+    result: str = ""
 
     @property
     def key(self) -> str:
@@ -218,6 +224,8 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
         variadic=bool(raw.get("variadic", False)),
         input=bool(raw.get("input", False)),
         unsupported=str(raw.get("unsupported", "")),
+        check=str(raw.get("check", "")),
+        result=str(raw.get("result", "")).upper(),
     )
 
 

@@ -169,3 +169,21 @@ def test_check_imports_no_implementation_module(tmp_path) -> None:  # type: igno
         done.stdout.splitlines()[-1]
         == "0 ['interpreter.instructions.implemented', 'interpreter.instructions.registry']"
     ), done.stdout + done.stderr
+
+
+def test_instruction_rules_named_by_the_catalog_exist_and_are_used() -> None:
+    """An instruction's special rule is named by its catalog entry (`check`), never found by
+    an `if name == ...` in the checker: each name is a rule, and each rule is named."""
+    from interpreter.semantics.checker import INSTRUCTION_CHECKS
+
+    named = {ins.check for ins in catalog().instructions if ins.check}
+    assert named == set(INSTRUCTION_CHECKS)
+
+
+def test_function_results_are_catalog_data() -> None:
+    # Trigonometry, logarithms and DEG/RAD return REAL for any numeric argument (1756-RM003);
+    # IsINF/IsNAN return BOOL; ABS and TRUNC keep the argument's type (no `result`).
+    results = {i.name: i.result for i in catalog().instructions if i.kind == "function"}
+    assert results["SIN"] == results["LN"] == results["RAD"] == results["ATAN2"] == "REAL"
+    assert results["ISINF"] == results["ISNAN"] == "BOOL"
+    assert results["ABS"] == results["TRUNC"] == ""

@@ -42,26 +42,6 @@ LVALUES = (n.Name, n.Member, n.Index, n.Bit, n.IndirectBit)
 BITS = (n.Bit, n.IndirectBit)
 COMPUTED = (n.Binary, n.Call)
 OPERATIONS = (n.Unary, n.Binary, n.Call)  # what _is_expression can be true for
-# Ladder instructions the compiler lowers itself (HELPERS contract): no implementation function.
-REAL_FUNCTIONS = {
-    "SQRT",
-    "LN",
-    "LOG",
-    "SIN",
-    "COS",
-    "TAN",
-    "ASIN",
-    "ACOS",
-    "ATAN",
-    "ASN",
-    "ACS",
-    "ATN",
-    "DEG",
-    "RAD",
-    "ATAN2",
-}
-# ST functions whose result is BOOL whatever the argument (tests of a REAL value)
-BOOL_FUNCTIONS = {"ISINF", "ISNAN"}
 
 
 @dataclass(slots=True)
@@ -213,7 +193,7 @@ class _OperandCheck:
             op.enum is not None
             or fmt in ("routine", "label", "array", "task")
             or op.nullable
-            or (ins.name in ("GSV", "SSV") and op.name == "InstanceName")
+            or fmt == "object"
             or op.types == ("MODULE",)
         )
         return _OperandCheck(
@@ -819,13 +799,9 @@ class Checker(LadderChecks):
             for e in args:
                 self.expr(e)
             return
-        if ins.name == "JSR":  # JSR(Routine, n, n inputs..., returns...)
-            inputs_end = known
-            if given > 1:
-                count = const_number(args[1])
-                inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
-            for i, e in enumerate(args):
-                self.operand(ins, checks[i if i < 2 else 2 if i < inputs_end else 3], e)
+        rule = INSTRUCTION_CHECKS.get(ins.check) if ins.check else None
+        if rule is not None and rule.operands:
+            rule.fn(self, ins, args, checks)  # the rule lays out the operands itself (JSR)
         else:
             for check, e in zip(checks, args, strict=False):
                 self.operand(ins, check, e)
@@ -834,14 +810,42 @@ class Checker(LadderChecks):
                     self.operand(ins, checks[-1], e)
         if ins.family == "compare" and given >= 2:
             self.compare_kinds(ins, args)
-        elif ins.name == "MOV" and given >= 2:
-            self.move_kinds(args)
-        if ins.name == "MDAC" and given >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
+        if rule is not None and not rule.operands:
+            rule.fn(self, ins, args, checks)
+
+    # ------------------------------------------------------------ instruction rules
+    # Each is named by its instruction's catalog entry (`check = "..."`, INSTRUCTION_CHECKS).
+    def jsr_parameters(
+        self, ins: Instruction, args: list[n.Expr], checks: tuple[_OperandCheck, ...]
+    ) -> None:
+        """JSR(Routine, n, n input parameters..., return parameters...)."""
+        inputs_end = len(ins.operands)
+        if len(args) > 1:
+            count = const_number(args[1])
+            inputs_end = 2 + (count if isinstance(count, int) and count > 0 else 0)
+        for i, e in enumerate(args):
+            self.operand(ins, checks[i if i < 2 else 2 if i < inputs_end else 3], e)
+
+    def distinct_axes(
+        self, ins: Instruction, args: list[n.Expr], checks: tuple[_OperandCheck, ...]
+    ) -> None:
+        """MDAC: a master must be another axis than its slave."""
+        if len(args) >= 2 and _text(args[0]).upper() == _text(args[1]).upper():
             self.err(
                 "E112", "the master axis must be a different axis from the slave", args[1].span
             )
-        if ins.name in ("GSV", "SSV") and given >= 3:
-            self.system_attribute(ins, args)
+
+    def system_read(
+        self, ins: Instruction, args: list[n.Expr], checks: tuple[_OperandCheck, ...]
+    ) -> None:
+        if len(args) >= 3:
+            self.system_attribute(ins, args, write=False)
+
+    def system_write(
+        self, ins: Instruction, args: list[n.Expr], checks: tuple[_OperandCheck, ...]
+    ) -> None:
+        if len(args) >= 3:
+            self.system_attribute(ins, args, write=True)
 
     def compare_kinds(self, ins: Instruction, args: list[n.Expr]) -> None:
         """Ladder compares take two numbers or two STRINGs (each operand alone accepts either)."""
@@ -853,8 +857,12 @@ class Checker(LadderChecks):
         if a_str != b_str:
             self.err("E116", f"{ins.name} cannot compare a STRING with a number", args[1].span)
 
-    def move_kinds(self, args: list[n.Expr]) -> None:
+    def same_kind_move(
+        self, ins: Instruction, args: list[n.Expr], checks: tuple[_OperandCheck, ...]
+    ) -> None:
         """MOV takes a STRING (tag or literal) into a STRING, or a number into a number."""
+        if len(args) < 2:
+            return
         a, b = (self.a.type_of.get(id(e)) for e in args[:2])
         if a is None or b is None:
             return
@@ -863,7 +871,7 @@ class Checker(LadderChecks):
         if a_str != b_str:
             self.err("E116", f"MOV cannot move {a} into {b}", args[1].span)
 
-    def system_attribute(self, ins: Instruction, args: list[n.Expr]) -> None:
+    def system_attribute(self, ins: Instruction, args: list[n.Expr], write: bool) -> None:
         """U303 for a GSV/SSV class and attribute pair the simulator does not model."""
         from ..instructions.ladder_system import attribute_names, unsupported
 
@@ -871,8 +879,8 @@ class Checker(LadderChecks):
         if cls is None or attr is None:
             return
         c, a = attribute_names(cls, attr)
-        if unsupported(c, a, write=ins.name == "SSV"):
-            what = "set" if ins.name == "SSV" else "read"
+        if unsupported(c, a, write=write):
+            what = "set" if write else "read"
             known = catalog().system_attribute(c, a) is not None  # stdlib/system_objects.toml
             self.err(
                 "U303",
@@ -985,12 +993,7 @@ class Checker(LadderChecks):
         if fmt == "task":
             self.task_operand(e)
             return True
-        if (
-            ins.name in ("GSV", "SSV")
-            and op.name == "InstanceName"
-            and isinstance(e, n.Name)
-            and self.lookup(e.ident) is None
-        ):
+        if fmt == "object" and isinstance(e, n.Name) and self.lookup(e.ident) is None:
             self.a.enum_of[id(e)] = 0  # an object's name (task, program, THIS), not a tag
             self.a.type_of[id(e)] = DINT
             return True
@@ -1352,9 +1355,9 @@ class Checker(LadderChecks):
                 return None
             arg_types.append(at)
         t = LREAL if len(arg_types) > 1 and LREAL in arg_types else arg_types[0]
-        if ins.name in REAL_FUNCTIONS:
+        if ins.result == "REAL":  # the catalog's result type (LREAL in, LREAL out)
             return LREAL if t is LREAL else REAL
-        if ins.name in BOOL_FUNCTIONS:
+        if ins.result == "BOOL":
             return BOOL
         return t
 
@@ -1419,3 +1422,20 @@ def _init_span(init: object) -> n.Span:
 
 def check_program(model: ProgramModel) -> Analysis:
     return Checker(model).run()
+
+
+@dataclass(frozen=True, slots=True)
+class InstructionCheck:
+    """A rule of one instruction beyond its operand table, named by its catalog entry."""
+
+    fn: Callable[[Checker, Instruction, list[n.Expr], tuple[_OperandCheck, ...]], None]
+    operands: bool = False  # it checks the operands itself (instead of one check per operand)
+
+
+INSTRUCTION_CHECKS: dict[str, InstructionCheck] = {
+    "jsr_parameters": InstructionCheck(Checker.jsr_parameters, operands=True),
+    "same_kind_move": InstructionCheck(Checker.same_kind_move),
+    "distinct_axes": InstructionCheck(Checker.distinct_axes),
+    "system_read": InstructionCheck(Checker.system_read),
+    "system_write": InstructionCheck(Checker.system_write),
+}
