@@ -9,12 +9,14 @@ over hidden SINTs, tags whose initialisers come from their L5K data (the data pa
 reader uses for its L5K fallback), AOIs, programs, ST routines (the `'` lines joined with
 newlines), ladder rungs (`N: text;`, `RC: "comment";`) and tasks. Spans are positions in the
 .L5K file; `context` names program / routine / rung or ST line like the L5X reader does.
-Blocks the model has no place for (CONFIG, TREND, QUICK_WATCH, PARAMETER_CONNECTION, module
-connection data ...) are skipped to their END_ keyword (decision 0048).
+Blocks the model has no place for (CONFIG, TREND, QUICK_WATCH, PARAMETER_CONNECTION ...) are
+skipped to their END_ keyword (decision 0048); module connection data declare I/O tags only
+where the MODULE block shows their layout (decision 0070).
 """
 
 from __future__ import annotations
 
+import html
 import re
 from bisect import bisect_right
 from collections.abc import Callable, Iterator
@@ -39,7 +41,7 @@ from .l5x import _remap as remap_spans
 from .l5x_data import DataReader, RawMember, _l5k_number
 from .literals import decode_text
 from .st_parser import parse_st
-from .xml_reader import Positions
+from .xml_reader import Positions, XmlRejected, parse_xml
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 # Type and module names may hold ':' (module-defined `AB:1756_DI:I:0`, `Ctrl:Partner`).
@@ -65,6 +67,15 @@ _VALUE = re.compile(r"\"(?:\$.|[^\"$])*\"|'(?:\$.|[^'$\n])*'|[\[\](){},;]")
 _RUNG_TYPE = re.compile(r"(N|I|D|R|IR|RR|RI|RN|E|ER)\s*:(?!=)", re.I)
 _NOT_MEMBERS = {"DESCRIPTION", "RADIX", "CONSTANT", "EXTERNALACCESS", "USAGE", "REQUIRED"}
 _MOTION = ("MOTION_GROUP", "COORDINATE_SYSTEM")
+# In a MODULE block: the raw XML of ExtendedProp, the module-defined types it may show, and
+# the statements that carry connection data (strings and raw XML matched whole, to skip them).
+_RAW = re.compile(r"\[\[\[___.*?___\]\]\]", re.S)
+_DATA_TAG = re.compile(r"<(Input|Output)DataTag>(.*?)</\1DataTag>", re.S)
+_MODULE_ITEM = re.compile(
+    r"\"(?:\$.|[^\"$])*\"|\[\[\[___.*?___\]\]\]"
+    r"|(?<![A-Za-z0-9_.])(CONNECTION|InputData|OutputData)(?![A-Za-z0-9_])",
+    re.S,
+)
 
 
 class _Fatal(Exception):
@@ -423,10 +434,13 @@ class _Reader:
 
     # ------------------------------------------------------------ modules
     def module(self, off: int) -> None:
-        """Only the module's place is read (the name of its I/O tags, decision 0048): an L5K
-        export gives connection data as bare values without the module-defined types."""
+        """The module's place (the names of its I/O tags, decision 0048) and, where the block
+        shows the layout of its connection data, its I/O tags with that data (decision 0070):
+        an L5K export gives connection data as bare values, and only some module profiles
+        write their module-defined types into `ExtendedProp`."""
         name, _ = self.word("a module name", _MODULE)
         attrs = self.attrs()
+        body = self.i
         self.skip_to_end("MODULE", off)
         if name.startswith("$"):
             return  # a module without a name of its own (a drive's peripheral): no I/O tags
@@ -439,6 +453,95 @@ class _Reader:
         if slot.isdigit() and parent and parent != name and not networked:
             prefix = f"{parent}:{int(slot)}"
         self.project.modules[prefix.upper()] = name
+        self.module_data(prefix, body, self.i)
+
+    def module_data(self, prefix: str, start: int, end: int) -> None:
+        """I/O tags `<prefix>:I` / `:O` of the connections whose type `ExtendedProp` shows; a
+        connection without one stays undeclared (the checker names its module, once)."""
+        layouts: dict[str, str] = {}  # "INPUT"/"OUTPUT" -> module-defined type name
+        raw = _RAW.search(self.t, start, end)
+        if raw is not None:
+            for m in _DATA_TAG.finditer(raw.group(0)):
+                tname = self.module_type(m.group(2), raw.start() + m.start(2))
+                if tname:
+                    layouts[m.group(1).upper()] = tname
+        if not layouts:
+            return
+        saved = self.i
+        suffixes = {"INPUT": "I", "OUTPUT": "O"}
+        try:
+            for m in _MODULE_ITEM.finditer(self.t, start, end):
+                word = m.group(1)
+                if word is None:
+                    continue  # a string or raw XML, stepped over whole
+                self.i = m.end()
+                if word == "CONNECTION":
+                    self.word("a connection name")
+                    cattrs = self.attrs()
+                    for kind in suffixes:
+                        sfx = cattrs.get(kind + "TAGSUFFIX")
+                        suffixes[kind] = sfx.text.strip() if sfx and sfx.text.strip() else kind[0]
+                    continue
+                kind = word[: -len("Data")].upper()  # InputData / OutputData
+                self.attrs()  # Description, COMMENT.<member> ...
+                self.expect(":=", f"after {word}")
+                self.ws()
+                vstart = self.i
+                text = self.t[vstart : self.value_end(vstart, ";")]
+                if kind in layouts:
+                    tag = f"{prefix}:{suffixes[kind]}"
+                    self.module_tag(tag, layouts[kind], text, m.start(1), vstart)
+        except _Bad as exc:
+            self.bad(exc)  # the block is read up to here; its END_MODULE was found already
+        finally:
+            self.i = saved
+
+    def module_type(self, escaped: str, off: int) -> str:
+        """Declare the module-defined type `ExtendedProp` shows (`<DataType Name=...>` as
+        escaped XML, `$Q` for its quotes); its name, or "" when it cannot be read."""
+        xml = html.unescape(escaped.replace("$Q", '"')).encode("utf-8")
+        try:
+            root, _ = parse_xml(xml)
+        except XmlRejected:
+            return ""
+        tname = root.get("Name").strip()
+        members = root.child("Members")
+        if root.tag != "DataType" or ":" not in tname or members is None:
+            return ""
+        key = tname.upper()
+        if key in self.udt_raw:
+            return key  # another module of this profile declared it already
+        sp = self.span(off)
+        raw: list[RawMember] = []
+        decls: list[n.VarDecl] = []
+        for e in members.all("Member"):
+            mname, mtype = e.get("Name").strip(), e.get("DataType").strip().upper()
+            if not mname or not mtype:
+                return ""
+            dim, bit = e.get("Dimension").strip() or "0", e.get("BitNumber").strip() or "0"
+            if not dim.isdigit() or not bit.isdigit():
+                return ""  # not a layout we can read: the module stays without its I/O tags
+            dims = int(dim)
+            hidden = e.get("Hidden").lower() in ("1", "true")
+            if mtype == "BIT":
+                raw.append(RawMember(mname, "BIT", 0, False, e.get("Target"), int(bit)))
+                mtype = "BOOL"  # a bit of its target member, shown as a BOOL (as Decorated data)
+            else:
+                raw.append(RawMember(mname, mtype, dims, hidden))
+            if not hidden:
+                tref = n.TypeRef(mtype, [(0, dims - 1)] if dims else [], sp)
+                decls.append(n.VarDecl([(mname, sp)], tref, None, sp))
+        self.udt_raw[key] = raw
+        self.project.types.append(n.TypeDecl(tname, decls, sp, sp))
+        return key
+
+    def module_tag(self, tag: str, tname: str, text: str, off: int, doff: int) -> None:
+        if any(d.names[0][0].upper() == tag.upper() for d in self.project.tags):
+            return  # a second connection with the same suffix: Studio keeps one tag
+        sp = self.span(off, len(tag))
+        init = self.data.from_l5k_text(text, tname, (), self.span(doff))
+        decl = n.VarDecl([(tag, sp)], n.TypeRef(tname, [], sp), init, sp, block="VAR_GLOBAL")
+        self.project.tags.append(decl)
 
     # ------------------------------------------------------------ tags
     def controller_tags(self, off: int) -> None:

@@ -181,6 +181,11 @@ def read_l5x(
             )
         ]
     ctl = root.child("Controller")
+    if ctl is None and root.get("TargetType") == "Module" and root.child("Module") is not None:
+        # A module export without context (ContainsContext="false") puts the target <Module>
+        # straight under the root: one module and its connection data, no controller, no
+        # program, nothing to scan (decision 0070).
+        ctl = root
     if ctl is None:
         return None, [
             diag("S007", "the export has no <Controller> element", path, pos.elem_span(root))
@@ -224,7 +229,8 @@ class _Reader:
         for sec in ctl.all("DataTypes"):
             for e in sec.all("DataType"):
                 self.datatype(e)
-        for sec in ctl.all("Modules"):
+        # the module sections: <Controller><Modules>, or the root itself of a module export
+        for sec in ctl.all("Modules") if ctl.tag == "Controller" else [ctl]:
             mods = ModuleReader(self.pos, self.data).read(sec)
             p.types.extend(mods.types)
             p.tags.extend(mods.tags)

@@ -384,8 +384,10 @@ class DataReader:
                 break
             v = values[i]
             i += 1
+            # a BIT member's host: a hidden SINT in a UDT, a visible INT/DINT in a
+            # module-defined type (`LogicCommand` and its `Stop`, `Start` ... bits)
+            hosts[m.name.upper()] = v if isinstance(v, int) else 0
             if m.hidden:
-                hosts[m.name.upper()] = v if isinstance(v, int) else 0
                 continue
             init = self._from_l5k(v, m.type.upper(), (m.dims,) if m.dims else (), span)
             if init is not None:
