@@ -6,10 +6,10 @@ import json
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from lsp_client import logixst_shim
 
 ROOT = Path(__file__).resolve().parents[2]
 SNIPPET = ROOT / "editors" / "nvim" / "logixst.lua"
@@ -19,18 +19,6 @@ NVIM = shutil.which("nvim")
 pytestmark = pytest.mark.skipif(
     NVIM is None, reason="Neovim is not installed (.ci/run installs the Debian package neovim)"
 )
-
-
-def logixst_shim(bin_dir: Path) -> Path:
-    """A `logixst` command on PATH that runs this checkout's code, as the snippet calls it."""
-    bin_dir.mkdir()
-    shim = bin_dir / "logixst"
-    shim.write_text(
-        f"#!{sys.executable}\nimport sys\nsys.path.insert(0, {str(ROOT)!r})\n"
-        "from interpreter.cli import entry\nsys.argv[0] = 'logixst'\nentry()\n"
-    )
-    shim.chmod(0o755)
-    return bin_dir
 
 
 def test_readme_shows_the_tested_snippet() -> None:
