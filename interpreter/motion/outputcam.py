@@ -507,7 +507,8 @@ def _evaluate(
     changed = enable != cam.enable_prev
     cam.enable_prev = enable
     due = cam.on & (cam.off_time <= tb)
-    if not ev_elem and not changed.any() and not due.any():
+    pulsing = cam.active & (comp.mode >= OutputMode.PULSED) & (comp.cycle_time > 0)
+    if not ev_elem and not changed.any() and not due.any() and not pulsing.any():
         return word, 0
     if math.isfinite(period):
         k0 = np.floor((ca - lo) / period)
