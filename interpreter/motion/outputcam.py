@@ -95,6 +95,10 @@ class _Cam:
     off_time: np.ndarray = field(default_factory=lambda: np.zeros(0))
     enable_prev: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
     active: np.ndarray = field(default_factory=lambda: np.zeros(BITS, bool))
+    # inside the compensated window at the end of the last evaluation; the window moves
+    # with the velocity, so an edge can pass the cam position between two updates
+    inside: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
+    sync_inside: bool = True  # take `inside` from the position (arming, re-entry)
     pulse_origin: np.ndarray = field(default_factory=lambda: np.zeros(BITS))
 
     def __post_init__(self) -> None:
@@ -125,6 +129,7 @@ class OutputCamTarget:
     pending: ArmRequest | None = None
     request: ArmRequest | None = None  # accepted by arm(), applied at the next update
     transition: bool = False
+    dropped: list[int] = field(default_factory=list)  # replaced before taking effect
 
 
 @dataclass(slots=True)
@@ -183,9 +188,17 @@ class OutputCamSet:
                 return ArmResult(False, error_code("Illegal Dynamic Change"))
         if compensation is not None:
             t.compensation = compensation
-        if sched == OutputCamExecutionSchedule.PENDING and t.cam is not None:
-            t.pending = request  # a later pending MAOC replaces an earlier one
+        if sched == OutputCamExecutionSchedule.PENDING and busy:
+            if t.pending is not None:  # a later pending MAOC replaces an earlier one
+                t.dropped.append(t.pending.handle)
+            t.pending = request
         else:
+            # a new arming replaces what was waiting: an earlier request of the same scan
+            # and a queued pending cam
+            for old in (t.request, t.pending):
+                if old is not None:
+                    t.dropped.append(old.handle)
+            t.pending = None
             t.request = request
         return ArmResult(True, check.error, check.exerr, check.segment)
 
@@ -257,6 +270,9 @@ class OutputCamSet:
         for t in self.targets.values():
             if t.cam is None and t.request is None:
                 t.transition = False
+                for h in t.dropped:
+                    step.events.append(OutputCamEvent(h, ENDED, t0))
+                t.dropped.clear()
                 continue
             _advance(self, t, t0, dt, start, end, unwind, velocity, time_of, step)
         return step
@@ -304,13 +320,13 @@ def _advance(
     t.transition = False
     word = t.output
     written = 0
+    for h in t.dropped:
+        step.events.append(OutputCamEvent(h, ENDED, t0))
+    t.dropped.clear()
     if t.request is not None:  # MAOC executed since the last update: applies at t0
         req, t.request = t.request, None
         if t.cam is not None:
             step.events.append(OutputCamEvent(t.cam.req.handle, ENDED, t0))
-        if t.pending is not None and req.schedule != OutputCamExecutionSchedule.PENDING:
-            step.events.append(OutputCamEvent(t.pending.handle, ENDED, t0))
-            t.pending = None
         t.cam = _Cam(req)
         if req.schedule in (
             OutputCamExecutionSchedule.IMMEDIATE,
@@ -345,6 +361,7 @@ def _advance(
                 OutputCamEvent(cam.req.handle, LOCKED, float(motion.time(np.array(d))))
             )
             cam.enable_prev = _enables(cam.req.elements, t.input, word)
+            cam.sync_inside = True
         lo, hi = cam.req.cam_start, cam.req.cam_end
         if not cam.in_range:  # Persistent, outside the range: wait for re-entry
             target_c = lo if cam.c < lo else hi
@@ -357,6 +374,7 @@ def _advance(
             cam.c = target_c
             d = d_in
             cam.in_range = True
+            cam.sync_inside = True
             cam.enable_prev = _enables(cam.req.elements, t.input, word)
         remaining = dx - d
         c_end = cam.c + remaining
@@ -502,6 +520,19 @@ def _evaluate(
                 ev_elem.append(idx)
                 ev_pos.append(level[idx] + k * (period if math.isfinite(period) else 0.0))
                 ev_kind.append(np.full(idx.size, kind))
+    if math.isfinite(period):
+        k0 = np.floor((ca - lo) / period)
+        inside0 = ca - (lo + k0 * period) <= hi - lo
+    else:
+        inside0 = (lo <= ca) & (ca <= hi)
+    if cam.sync_inside:
+        cam.inside = inside0.copy()
+        cam.sync_inside = False
+    jump = np.flatnonzero(cam.inside != inside0)
+    if jump.size:  # the window edge moved over the cam position: switch at the start
+        ev_elem.append(jump)
+        ev_pos.append(np.full(jump.size, ca))
+        ev_kind.append(np.where(inside0[jump], _ENTER, _EXIT))
     # enable edges happen at the start of the update (words are sampled per update)
     enable = _enables(el, t.input, word)
     changed = enable != cam.enable_prev
@@ -510,11 +541,6 @@ def _evaluate(
     pulsing = cam.active & (comp.mode >= OutputMode.PULSED) & (comp.cycle_time > 0)
     if not ev_elem and not changed.any() and not due.any() and not pulsing.any():
         return word, 0
-    if math.isfinite(period):
-        k0 = np.floor((ca - lo) / period)
-        inside0 = ca - (lo + k0 * period) <= hi - lo
-    else:
-        inside0 = (lo <= ca) & (ca <= hi)
     elem = np.concatenate(ev_elem) if ev_elem else np.zeros(0, np.int64)
     pos = np.concatenate(ev_pos) if ev_pos else np.zeros(0)
     kinds = np.concatenate(ev_kind) if ev_kind else np.zeros(0, np.int64)
@@ -531,7 +557,7 @@ def _evaluate(
         latch = int(el.latch[e])
         unlatch = int(el.unlatch[e])
         en = bool(enable[e])
-        inside = bool(inside0[e])
+        inside = bool(cam.inside[e])
         on = bool(cam.on[e])
         off_at = float(cam.off_time[e])
         dur = float(el.duration[e] + comp.latch_delay[el.bit[e]] - comp.unlatch_delay[el.bit[e]])
@@ -583,6 +609,7 @@ def _evaluate(
             off_at = math.inf
         cam.on[e] = on
         cam.off_time[e] = off_at
+        cam.inside[e] = inside
     return _bits(t, cam, switches, ta, tb, word, step)
 
 

@@ -66,15 +66,28 @@ class Axis:
 
     def __init__(self, x0: float = 0.0, v: float = 100.0) -> None:
         self.x = x0
-        self.v = v
-        self.t = 0.0
+        self._v = v
         self.n = 0
+        self._base = (x0, 0)  # positions from the last velocity change, not accumulated
+
+    @property
+    def v(self) -> float:
+        return self._v
+
+    @v.setter
+    def v(self, value: float) -> None:
+        self._v = value
+        self._base = (self.x, self.n)
+
+    def position(self, n: int) -> float:
+        x, n0 = self._base
+        return x + self._v * (n - n0) * DT
 
     def run(self, s: OutputCamSet, seconds: float, unwind: float = 0.0):
         edges, events = [], []
         for _ in range(round(seconds / DT)):
             t0 = self.n * DT
-            x1 = self.x + self.v * DT
+            x1 = self.position(self.n + 1)
             if unwind:
                 x1 %= unwind
             start = np.array([[self.x], [self.x]])
@@ -407,3 +420,75 @@ def test_mdoc_disarms_and_outputs_keep_their_state() -> None:
     assert s.targets[(0, 0)].output == 0  # still armed: reset leaving the window
     assert s.disarm(0, 0, DisarmType.ALL) == [1]
     assert s.status_words(0)["OutputCamStatus"] == 0
+
+
+# -- exact motion, reference, transition ----------------------------------------------------
+def test_exact_inverse_of_an_accelerating_axis_gives_exact_edges() -> None:
+    # x = a t^2 / 2, a = 1000 u/s^2, no delays. Window [10.2, 10.5]:
+    # on at sqrt(2 * 10.2 / 1000) = 0.1428285686 s, off at sqrt(0.021) = 0.1449137675 s
+    # (linear interpolation inside the 1 ms update would be off by up to ~1e-6 s here)
+    a = 1000.0
+    s = OutputCamSet()
+    el, _ = cam(window(left=10.2, right=10.5))
+    arm(s, el)
+    edges = []
+    for n in range(200):
+        t0 = n * DT
+        x0, x1 = a * t0**2 / 2, a * (t0 + DT) ** 2 / 2
+
+        def inverse(d, x0=x0, t0=t0):
+            return np.sqrt(2 * (x0 + d) / a) - t0
+
+        step = s.update(t0, DT, np.array([[x0], [x0]]), np.array([[x1], [x1]]),
+                        time_of={(0, 0): inverse})  # fmt: skip
+        edges += [(e.bit, e.time, e.value) for e in step.edges]
+    got = [t for _, t, _ in edges]
+    assert got == pytest.approx([0.1428285686, 0.1449137675], abs=1e-9)
+
+
+def test_reference_selects_actual_or_command_position() -> None:
+    # command = 100 t, actual = 100 t - 1 (1 u behind). Forward only, AxisArm 0, CamArm 0:
+    # cam = position of the chosen reference. Window [10, 20]: command reaches 10 at
+    # t = 0.1, actual at t = 0.11; off 0.1 s later.
+    for ref, on_t in ((PositionReference.COMMAND, 0.1), (PositionReference.ACTUAL, 0.11)):
+        s = OutputCamSet()
+        el, _ = cam(window())
+        arm(s, el, ref=ref, sched=FWD)
+        edges = []
+        for n in range(300):
+            t0 = n * DT
+            cmd0, cmd1 = 100 * t0, 100 * (t0 + DT)
+            step = s.update(t0, DT, np.array([[cmd0 - 1], [cmd0]]),
+                            np.array([[cmd1 - 1], [cmd1]]))  # fmt: skip
+            edges += [(e.bit, e.time, e.value) for e in step.edges]
+        assert_edges(edges, [(on_t, True), (on_t + 0.1, False)])
+
+
+def test_transition_status_marks_the_update_of_a_hand_over() -> None:
+    # Continuous cam over [0, 50] with a pending cam: hand-over at the first wrap
+    # (x = 50, t = 0.5, inside the update [0.499, 0.5]... the update ending at 0.5 reaches
+    # 50 exactly, the cam only moves beyond it in the next update [0.5, 0.501])
+    s = OutputCamSet()
+    el, _ = cam(window(), end=50.0)
+    arm(s, el, mode=CONT, end=50.0)
+    arm(s, el, handle=2, sched=PEND)
+    ax = Axis(0.0, 100.0)
+    seen = []
+    for _ in range(600):
+        _, events = ax.run(s, DT)
+        seen.append(s.status_words(0)["OutputCamTransitionStatus"])
+        if events and events[0][1] == PENDING_STARTED:
+            assert events[0][2] == pytest.approx(0.5, abs=US)
+    assert seen.count(1) == 1 and seen.index(1) == 500
+    # the continuous cam ended without PC
+    assert s.status_words(0)["OutputCamPendingStatus"] == 0
+
+
+def test_continuous_in_reverse_wraps_to_the_end() -> None:
+    # range [0, 100], cam arm 100 at axis 100, v = -100: cam = x until 0, then wraps to 100.
+    # window [10, 20] mirrored: on at 20 (t 0.8), off leaving 10 (t 0.9), again + 1 s
+    s = OutputCamSet()
+    el, _ = cam(window())
+    arm(s, el, mode=CONT, axis_arm=100.0, cam_arm=100.0)
+    edges, _ = Axis(100.0, -100.0).run(s, 2.0)
+    assert_edges(edges, [(0.8, True), (0.9, False), (1.8, True), (1.9, False)])
