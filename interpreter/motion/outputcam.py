@@ -33,6 +33,23 @@ from interpreter.motion.outputcam_tables import (
     error_code,
 )
 
+# plain ints for the hot paths (IntEnum attribute access costs a call)
+_L_POSITION = int(LatchType.POSITION)
+_L_ENABLE = int(LatchType.ENABLE)
+_L_POSITION_AND_ENABLE = int(LatchType.POSITION_AND_ENABLE)
+_U_POSITION = int(UnlatchType.POSITION)
+_U_DURATION = int(UnlatchType.DURATION)
+_U_ENABLE = int(UnlatchType.ENABLE)
+_U_POSITION_AND_ENABLE = int(UnlatchType.POSITION_AND_ENABLE)
+_U_DURATION_AND_ENABLE = int(UnlatchType.DURATION_AND_ENABLE)
+_M_NORMAL = int(OutputMode.NORMAL)
+_M_INVERTED = int(OutputMode.INVERTED)
+_M_PULSED = int(OutputMode.PULSED)
+_M_INVERTED_AND_PULSED = int(OutputMode.INVERTED_AND_PULSED)
+_E_INVERTED_INPUT = int(EnableType.INVERTED_INPUT)
+_E_OUTPUT = int(EnableType.OUTPUT)
+_E_INVERTED_OUTPUT = int(EnableType.INVERTED_OUTPUT)
+
 TARGETS = 8
 
 # Event kinds reported by update(), for the MOTION_INSTRUCTION bits of the arming MAOC.
@@ -106,6 +123,7 @@ class _Cam:
         self.on = np.zeros(n, bool)
         self.off_time = np.full(n, math.inf)
         self.enable_prev = np.zeros(n, bool)
+        self.inside = np.zeros(n, bool)
 
     @property
     def periodic(self) -> bool:
@@ -147,9 +165,106 @@ TimeOf = Callable[[np.ndarray], np.ndarray]
 class OutputCamSet:
     """All output cam execution targets of one motion group."""
 
-    def __init__(self, min_width: float = 0.0) -> None:
+    def __init__(self, min_width: float = 0.0, batch: bool = True) -> None:
         self.targets: dict[tuple[int, int], OutputCamTarget] = {}
         self.min_width = min_width  # smallest compensated window, position units
+        self._bank: _Bank | None = None
+        self.batch = batch  # False: every cam through the exact path (tests compare both)
+
+    def _quiet(
+        self,
+        dt: float,
+        start: np.ndarray,
+        end: np.ndarray,
+        unwind: np.ndarray | None,
+        velocity: np.ndarray | None,
+        time_of: dict[tuple[int, int], TimeOf] | None,
+    ) -> set[int]:
+        """One numpy pass over every element of every running cam: cams in which nothing
+        switches this update only move their cam position (ids of their targets returned);
+        the others go through the exact per-cam evaluation."""
+        rows = [
+            t
+            for t in self.targets.values()
+            if t.cam is not None
+            and t.request is None
+            and not t.dropped
+            and t.cam.locked
+            and t.cam.in_range
+        ]
+        if not rows or time_of or not self.batch:
+            return set()
+        key = tuple((id(t.cam), id(t.compensation)) for t in rows)
+        bank = self._bank
+        if bank is None or bank.key != key:
+            bank = self._bank = _Bank(key, rows)
+        b = bank
+        cams = [t.cam for t in rows if t.cam is not None]
+        c = np.fromiter((cam.c for cam in cams), np.float64, len(cams))
+        x0 = start[b.ref, b.axis]
+        dx = end[b.ref, b.axis] - x0
+        if unwind is not None:
+            u = unwind[b.axis]
+            dx = np.where(u > 0, (dx + u / 2) % np.where(u > 0, u, 1.0) - u / 2, dx)
+        v = velocity[b.ref, b.axis] if velocity is not None else dx / dt
+        cb = c + dx
+        pending = np.fromiter((t.pending is not None for t in rows), bool, len(rows))
+        leaves = (cb > b.end) | (cb < b.start)
+        busy_cam = leaves & (np.logical_not(b.periodic) | pending)
+        # element level
+        r = b.row
+        ca_e, cb_e, v_e = c[r], cb[r], v[r]
+        fwd = v_e >= 0
+        lo_f = b.left - v_e * b.ld
+        hi_f = np.maximum(b.right - v_e * b.ud, lo_f + self.min_width)
+        hi_r = b.right - v_e * b.ld
+        lo_r = np.minimum(b.left - v_e * b.ud, hi_r - self.min_width)
+        lo = np.where(fwd, lo_f, lo_r)
+        hi = np.where(fwd, hi_f, hi_r)
+        per = b.period_e
+        # inside at the start (replicated windows for periodic cams), and a level crossed
+        # in the travel [ca, cb] (ends included: ties go the exact way)
+        a_, z_ = np.minimum(ca_e, cb_e), np.maximum(ca_e, cb_e)
+        inside0 = cross_lo = cross_hi = np.zeros(0, bool)
+        if b.all_periodic or b.any_periodic:
+            k0 = np.floor((ca_e - lo) / per)
+            inside0 = ca_e - (lo + k0 * per) <= hi - lo
+            cross_lo = np.floor((z_ - lo) / per) >= np.ceil((a_ - lo) / per)
+            cross_hi = np.floor((z_ - hi) / per) >= np.ceil((a_ - hi) / per)
+        if not b.all_periodic:
+            pe = b.periodic_e
+            inside_np = (lo <= ca_e) & (ca_e <= hi)
+            lo_np = (a_ <= lo) & (lo <= z_)
+            hi_np = (a_ <= hi) & (hi <= z_)
+            if b.any_periodic:
+                inside0 = np.where(pe, inside0, inside_np)
+                cross_lo = np.where(pe, cross_lo, lo_np)
+                cross_hi = np.where(pe, cross_hi, hi_np)
+            else:
+                inside0, cross_lo, cross_hi = inside_np, lo_np, hi_np
+        busy = (inside0 != b.inside) | ((cross_lo | cross_hi) & (dx[r] != 0))
+        busy |= b.on & np.isfinite(b.off_time)
+        if b.any_enable:
+            words_out = np.fromiter((t.output for t in rows), np.int64, len(rows))
+            words_in = np.fromiter((t.input for t in rows), np.int64, len(rows))
+            src = np.where(b.etype >= _E_OUTPUT, words_out[r], words_in[r])
+            en = (((src >> b.ebit) & 1).astype(bool)) ^ b.einv
+            busy |= b.uses_enable & (en != b.enable_prev)
+        busy_cam |= np.bincount(r[busy], minlength=len(rows)) > 0
+        for i in b.pulsed_rows:  # a pulse train runs while a pulsed bit is active
+            busy_cam[i] |= bool(cams[i].active.any())
+        c_new = np.where(
+            b.periodic & ((cb > b.end) | (cb < b.start)),
+            b.start + (cb - b.start) % b.span,
+            cb,
+        )
+        done: set[int] = set()
+        for i in np.flatnonzero(~busy_cam).tolist():
+            t = rows[i]
+            cams[i].c = float(c_new[i])
+            t.transition = False
+            done.add(id(t))
+        return done
 
     def target(self, axis: int, target: int) -> OutputCamTarget:
         key = (axis, target)
@@ -267,7 +382,10 @@ class OutputCamSet:
         (2, axes) velocity for the delay compensation (default: mean over the interval).
         time_of: exact inverse of the motion per (reference, axis), see TimeOf."""
         step = OutputCamStep([], [], {})
+        quiet = self._quiet(dt, start, end, unwind, velocity, time_of)
         for t in self.targets.values():
+            if id(t) in quiet:
+                continue
             if t.cam is None and t.request is None:
                 t.transition = False
                 for h in t.dropped:
@@ -276,6 +394,67 @@ class OutputCamSet:
                 continue
             _advance(self, t, t0, dt, start, end, unwind, velocity, time_of, step)
         return step
+
+
+class _Bank:
+    """Elements of all running cams laid end to end; the cams' state arrays become views
+    into the bank's arrays so both paths share one copy."""
+
+    def __init__(self, key: tuple, rows: list[OutputCamTarget]) -> None:
+        self.key = key
+        cams = [t.cam for t in rows if t.cam is not None]
+        assert len(cams) == len(rows)
+        sizes = [len(c.req.elements) for c in cams]
+        self.row = np.repeat(np.arange(len(rows)), sizes)
+
+        def cat(get) -> np.ndarray:
+            parts = [get(t, t.cam) for t in rows]
+            return np.concatenate(parts) if parts else np.zeros(0)
+
+        bit = cat(lambda t, c: c.req.elements.bit).astype(np.int64)
+        self.left = cat(
+            lambda t, c: c.req.elements.left + t.compensation.offset[c.req.elements.bit]
+        )
+        self.right = cat(
+            lambda t, c: c.req.elements.right + t.compensation.offset[c.req.elements.bit]
+        )
+        self.ld = cat(lambda t, c: t.compensation.latch_delay[c.req.elements.bit])
+        self.ud = cat(lambda t, c: t.compensation.unlatch_delay[c.req.elements.bit])
+        self.etype = cat(lambda t, c: c.req.elements.enable_type).astype(np.int64)
+        self.ebit = cat(lambda t, c: c.req.elements.enable_bit).astype(np.int64)
+        self.einv = (self.etype == _E_INVERTED_INPUT) | (self.etype == _E_INVERTED_OUTPUT)
+        latch = cat(lambda t, c: c.req.elements.latch)
+        unlatch = cat(lambda t, c: c.req.elements.unlatch)
+        self.uses_enable = (
+            (latch == _L_ENABLE) | (latch == _L_POSITION_AND_ENABLE) | (unlatch >= _U_ENABLE)
+        )
+        self.any_enable = bool(self.uses_enable.any())
+        self.pulsed_rows = [
+            i for i, t in enumerate(rows) if bool((t.compensation.mode >= _M_PULSED).any())
+        ]
+        del bit
+        self.axis = np.array([t.axis for t in rows], np.intp)
+        self.ref = np.array([int(c.req.reference) for c in cams], np.intp)
+        self.start = np.array([c.req.cam_start for c in cams])
+        self.end = np.array([c.req.cam_end for c in cams])
+        self.span = self.end - self.start
+        self.periodic = np.array([c.periodic for c in cams], dtype=np.bool_)
+        self.periodic_e = self.periodic[self.row]
+        self.all_periodic = bool(self.periodic.all())
+        self.any_periodic = bool(self.periodic.any())
+        self.period_e = np.where(self.periodic_e, self.span[self.row], 1.0)
+        # shared state: concatenate, then hand each cam its slice as a view
+        self.on = cat(lambda t, c: c.on).astype(bool)
+        self.off_time = cat(lambda t, c: c.off_time).astype(float)
+        self.inside = cat(lambda t, c: c.inside).astype(bool)
+        self.enable_prev = cat(lambda t, c: c.enable_prev).astype(bool)
+        edges = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
+        for c, a, z in zip(cams, edges[:-1], edges[1:], strict=True):
+            assert c is not None
+            c.on = self.on[a:z]
+            c.off_time = self.off_time[a:z]
+            c.inside = self.inside[a:z]
+            c.enable_prev = self.enable_prev[a:z]
 
 
 def _displacement(x0: float, x1: float, unwind: float) -> float:
@@ -334,7 +513,7 @@ def _advance(
         ):
             t.cam.locked = True
             t.cam.c = req.cam_arm
-            t.cam.enable_prev = _enables(req.elements, t.input, word)
+            t.cam.enable_prev[:] = _enables(req.elements, t.input, word)
             step.events.append(OutputCamEvent(req.handle, LOCKED, t0))
     cam = t.cam
     assert cam is not None
@@ -360,7 +539,7 @@ def _advance(
             step.events.append(
                 OutputCamEvent(cam.req.handle, LOCKED, float(motion.time(np.array(d))))
             )
-            cam.enable_prev = _enables(cam.req.elements, t.input, word)
+            cam.enable_prev[:] = _enables(cam.req.elements, t.input, word)
             cam.sync_inside = True
         lo, hi = cam.req.cam_start, cam.req.cam_end
         if not cam.in_range:  # Persistent, outside the range: wait for re-entry
@@ -375,7 +554,7 @@ def _advance(
             d = d_in
             cam.in_range = True
             cam.sync_inside = True
-            cam.enable_prev = _enables(cam.req.elements, t.input, word)
+            cam.enable_prev[:] = _enables(cam.req.elements, t.input, word)
         remaining = dx - d
         c_end = cam.c + remaining
         boundary: float | None = None
@@ -405,7 +584,7 @@ def _advance(
             kind = COMPLETE if cam.req.mode == OutputCamExecutionMode.ONCE else ENDED
             step.events.append(OutputCamEvent(cam.req.handle, kind, t_x))
             t.cam = _Cam(nxt, locked=True, c=nxt.cam_arm)
-            t.cam.enable_prev = _enables(nxt.elements, t.input, word)
+            t.cam.enable_prev[:] = _enables(nxt.elements, t.input, word)
             t.transition = True
             step.events.append(OutputCamEvent(nxt.handle, PENDING_STARTED, t_x))
         elif cam.req.mode == OutputCamExecutionMode.ONCE:
@@ -440,11 +619,9 @@ def _arm_crossing(req: ArmRequest, x0: float, d: float, dx: float, unwind: float
 
 def _enables(el: CamElements, input_word: int, output_word: int) -> np.ndarray:
     """Enable state of each element from its source word, bit and inversion."""
-    src = np.where(el.enable_type >= EnableType.OUTPUT, output_word, input_word)
+    src = np.where(el.enable_type >= _E_OUTPUT, output_word, input_word)
     bits = ((src.astype(np.int64) >> el.enable_bit) & 1).astype(bool)
-    inverted = (el.enable_type == EnableType.INVERTED_INPUT) | (
-        el.enable_type == EnableType.INVERTED_OUTPUT
-    )
+    inverted = (el.enable_type == _E_INVERTED_INPUT) | (el.enable_type == _E_INVERTED_OUTPUT)
     return bits ^ inverted
 
 
@@ -526,7 +703,7 @@ def _evaluate(
     else:
         inside0 = (lo <= ca) & (ca <= hi)
     if cam.sync_inside:
-        cam.inside = inside0.copy()
+        cam.inside[:] = inside0
         cam.sync_inside = False
     jump = np.flatnonzero(cam.inside != inside0)
     if jump.size:  # the window edge moved over the cam position: switch at the start
@@ -536,9 +713,9 @@ def _evaluate(
     # enable edges happen at the start of the update (words are sampled per update)
     enable = _enables(el, t.input, word)
     changed = enable != cam.enable_prev
-    cam.enable_prev = enable
+    cam.enable_prev[:] = enable
     due = cam.on & (cam.off_time <= tb)
-    pulsing = cam.active & (comp.mode >= OutputMode.PULSED) & (comp.cycle_time > 0)
+    pulsing = cam.active & (comp.mode >= _M_PULSED) & (comp.cycle_time > 0)
     if not ev_elem and not changed.any() and not due.any() and not pulsing.any():
         return word, 0
     elem = np.concatenate(ev_elem) if ev_elem else np.zeros(0, np.int64)
@@ -573,27 +750,23 @@ def _evaluate(
             set_it = reset = False
             if kind == _ENTER:
                 inside = True
-                set_it = latch == LatchType.POSITION or (
-                    latch == LatchType.POSITION_AND_ENABLE and en
-                )
+                set_it = latch == _L_POSITION or (latch == _L_POSITION_AND_ENABLE and en)
             elif kind == _EXIT:
                 inside = False
-                reset = unlatch in (UnlatchType.POSITION, UnlatchType.POSITION_AND_ENABLE)
+                reset = unlatch in (_U_POSITION, _U_POSITION_AND_ENABLE)
             elif kind == 2:
-                set_it = latch == LatchType.ENABLE or (
-                    latch == LatchType.POSITION_AND_ENABLE and inside
-                )
+                set_it = latch == _L_ENABLE or (latch == _L_POSITION_AND_ENABLE and inside)
             else:
                 reset = unlatch in (
-                    UnlatchType.ENABLE,
-                    UnlatchType.POSITION_AND_ENABLE,
-                    UnlatchType.DURATION_AND_ENABLE,
+                    _U_ENABLE,
+                    _U_POSITION_AND_ENABLE,
+                    _U_DURATION_AND_ENABLE,
                 )
             if set_it and not on:
                 on = True
                 switches.append((when, seq, e, True))
                 seq += 1
-                if unlatch in (UnlatchType.DURATION, UnlatchType.DURATION_AND_ENABLE):
+                if unlatch in (_U_DURATION, _U_DURATION_AND_ENABLE):
                     off_at = when + max(dur, 0.0)
                 else:
                     off_at = math.inf
@@ -647,17 +820,17 @@ def _bits(
             cam.pulse_origin[b] = when
         else:
             cam.active[b] = False
-        if mode == OutputMode.NORMAL:
+        if mode == _M_NORMAL:
             writes.append((when, order, b, after))
-        elif mode == OutputMode.INVERTED:
+        elif mode == _M_INVERTED:
             writes.append((when, order, b, not after))
-        elif mode == OutputMode.PULSED:
+        elif mode == _M_PULSED:
             writes.append((when, order, b, after and comp.duty[b] > 0))
         else:
             writes.append((when, order, b, not (after and comp.duty[b] > 0)))
         order += 1
     # pulse trains of pulsed bits while active (origin = the instant the bit turned active)
-    pulsed = (comp.mode == OutputMode.PULSED) | (comp.mode == OutputMode.INVERTED_AND_PULSED)
+    pulsed = (comp.mode == _M_PULSED) | (comp.mode == _M_INVERTED_AND_PULSED)
     for b in np.flatnonzero(pulsed & ((start_count > 0) | (count > 0))).tolist():
         writes.extend(_pulse_writes(b, comp, cam, switches, int(start_count[b]), ta, tb, el))
     for when, _, b, value in sorted(writes):
@@ -689,7 +862,7 @@ def _pulse_writes(
     """Pulse edges of bit b inside its active spans within [ta, tb]."""
     period = float(comp.cycle_time[b])
     width = float(comp.duty[b]) * period
-    inverted = int(comp.mode[b]) == OutputMode.INVERTED_AND_PULSED
+    inverted = int(comp.mode[b]) == _M_INVERTED_AND_PULSED
     if period <= 0 or width <= 0 or width >= period:
         return []  # a 0 % or 100 % pulse has no edges of its own
     # active spans of the bit inside the segment
