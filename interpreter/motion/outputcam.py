@@ -173,6 +173,7 @@ class OutputCamSet:
 
     def _quiet(
         self,
+        t0: float,
         dt: float,
         start: np.ndarray,
         end: np.ndarray,
@@ -243,7 +244,7 @@ class OutputCamSet:
             else:
                 inside0, cross_lo, cross_hi = inside_np, lo_np, hi_np
         busy = (inside0 != b.inside) | ((cross_lo | cross_hi) & (dx[r] != 0))
-        busy |= b.on & np.isfinite(b.off_time)
+        busy |= b.on & (b.off_time <= t0 + dt)
         if b.any_enable:
             words_out = np.fromiter((t.output for t in rows), np.int64, len(rows))
             words_in = np.fromiter((t.input for t in rows), np.int64, len(rows))
@@ -382,7 +383,7 @@ class OutputCamSet:
         (2, axes) velocity for the delay compensation (default: mean over the interval).
         time_of: exact inverse of the motion per (reference, axis), see TimeOf."""
         step = OutputCamStep([], [], {})
-        quiet = self._quiet(dt, start, end, unwind, velocity, time_of)
+        quiet = self._quiet(t0, dt, start, end, unwind, velocity, time_of)
         for t in self.targets.values():
             if id(t) in quiet:
                 continue
@@ -839,7 +840,7 @@ def _bits(
             continue
         word = (word | mask) if value else (word & ~mask)
         written |= mask
-        step.edges.append(Edge(t.axis, t.target, b, when, value))
+        step.edges.append(Edge(t.axis, t.target, b, float(when), bool(value)))
     return word, written
 
 
