@@ -169,6 +169,7 @@ class OutputCamSet:
         self.targets: dict[tuple[int, int], OutputCamTarget] = {}
         self.min_width = min_width  # smallest compensated window, position units
         self._bank: _Bank | None = None
+        self._dirty = True  # cams, their lock/range state or a compensation changed
         self.batch = batch  # False: every cam through the exact path (tests compare both)
 
     def _quiet(
@@ -184,22 +185,24 @@ class OutputCamSet:
         """One numpy pass over every element of every running cam: cams in which nothing
         switches this update only move their cam position (ids of their targets returned);
         the others go through the exact per-cam evaluation."""
-        rows = [
-            t
-            for t in self.targets.values()
-            if t.cam is not None
-            and t.request is None
-            and not t.dropped
-            and t.cam.locked
-            and t.cam.in_range
-        ]
-        if not rows or time_of or not self.batch:
+        if time_of or not self.batch:
             return set()
-        key = tuple((id(t.cam), id(t.compensation)) for t in rows)
-        bank = self._bank
-        if bank is None or bank.key != key:
-            bank = self._bank = _Bank(key, rows)
-        b = bank
+        if self._dirty or self._bank is None:
+            rows = [
+                t
+                for t in self.targets.values()
+                if t.cam is not None
+                and t.request is None
+                and not t.dropped
+                and t.cam.locked
+                and t.cam.in_range
+            ]
+            self._bank = _Bank(rows)
+            self._dirty = False
+        b = self._bank
+        rows = b.rows
+        if not rows:
+            return set()
         cams = [t.cam for t in rows if t.cam is not None]
         c = np.fromiter((cam.c for cam in cams), np.float64, len(cams))
         x0 = start[b.ref, b.axis]
@@ -304,6 +307,7 @@ class OutputCamSet:
                 return ArmResult(False, error_code("Illegal Dynamic Change"))
         if compensation is not None:
             t.compensation = compensation
+        self._dirty = True
         if sched == OutputCamExecutionSchedule.PENDING and busy:
             if t.pending is not None:  # a later pending MAOC replaces an earlier one
                 t.dropped.append(t.pending.handle)
@@ -321,11 +325,13 @@ class OutputCamSet:
     def set_compensation(self, axis: int, target: int, compensation: Compensation) -> None:
         """Compensation changes take effect at once (next update)."""
         self.target(axis, target).compensation = compensation
+        self._dirty = True
 
     def disarm(self, axis: int, target: int, disarm_type: DisarmType) -> list[int]:
         """MDOC: drop armed and pending cams; outputs keep their state. Returns the handles
         whose MAOC ends (IP cleared)."""
         ended: list[int] = []
+        self._dirty = True
         for (a, tg), t in self.targets.items():
             if a != axis or (disarm_type == DisarmType.SPECIFIC and tg != target):
                 continue
@@ -387,6 +393,7 @@ class OutputCamSet:
         for t in self.targets.values():
             if id(t) in quiet:
                 continue
+            before = _signature(t)
             if t.cam is None and t.request is None:
                 t.transition = False
                 for h in t.dropped:
@@ -394,15 +401,24 @@ class OutputCamSet:
                 t.dropped.clear()
                 continue
             _advance(self, t, t0, dt, start, end, unwind, velocity, time_of, step)
+            if _signature(t) != before:
+                self._dirty = True
         return step
+
+
+def _signature(t: OutputCamTarget) -> tuple:
+    """What decides a target's place in the bank (compared around the exact path)."""
+    c = t.cam
+    waiting = (t.request is not None, bool(t.dropped))
+    return (id(c), c.locked, c.in_range, *waiting) if c is not None else (None, *waiting)
 
 
 class _Bank:
     """Elements of all running cams laid end to end; the cams' state arrays become views
     into the bank's arrays so both paths share one copy."""
 
-    def __init__(self, key: tuple, rows: list[OutputCamTarget]) -> None:
-        self.key = key
+    def __init__(self, rows: list[OutputCamTarget]) -> None:
+        self.rows = rows
         cams = [t.cam for t in rows if t.cam is not None]
         assert len(cams) == len(rows)
         sizes = [len(c.req.elements) for c in cams]
