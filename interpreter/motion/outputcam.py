@@ -428,7 +428,6 @@ class _Bank:
             parts = [get(t, t.cam) for t in rows]
             return np.concatenate(parts) if parts else np.zeros(0)
 
-        bit = cat(lambda t, c: c.req.elements.bit).astype(np.int64)
         self.left = cat(
             lambda t, c: c.req.elements.left + t.compensation.offset[c.req.elements.bit]
         )
@@ -449,7 +448,6 @@ class _Bank:
         self.pulsed_rows = [
             i for i, t in enumerate(rows) if bool((t.compensation.mode >= _M_PULSED).any())
         ]
-        del bit
         self.axis = np.array([t.axis for t in rows], np.intp)
         self.ref = np.array([int(c.req.reference) for c in cams], np.intp)
         self.start = np.array([c.req.cam_start for c in cams])

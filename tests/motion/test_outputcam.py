@@ -418,8 +418,10 @@ def test_mdoc_disarms_and_outputs_keep_their_state() -> None:
     ax.run(s, 0.2)
     assert s.targets[(0, 3)].output == 1  # kept on after the disarm
     assert s.targets[(0, 0)].output == 0  # still armed: reset leaving the window
-    assert s.disarm(0, 0, DisarmType.ALL) == [1]
+    arm(s, el, handle=5, axis=1, target=0)
+    assert s.disarm(0, 0, DisarmType.ALL) == [1]  # All: every target of axis 0 only
     assert s.status_words(0)["OutputCamStatus"] == 0
+    assert s.status_words(1)["OutputCamStatus"] == 1
 
 
 # -- exact motion, reference, transition ----------------------------------------------------
