@@ -175,3 +175,50 @@ END_IF;"""
     # a shut-down axis: 12 with EXERR 12 (object mode conflict), at once
     assert tr.at(0.003, "c5.ERR") == 12 and tr.at(0.003, "c5.EXERR") == 12
     assert tr.at(0.003, "c6.ERR") == 12 and tr.at(0.003, "c6.EXERR") == 12
+
+
+LADDER = """VAR
+  D : AXIS_SERVO;
+  V : AXIS_VIRTUAL;
+  on, off, tune, tv : MOTION_INSTRUCTION;
+  go, stop : BOOL;
+  k : DINT;
+END_VAR
+XIC(go)MDO(D,on,50,Percent)MRAT(D,tune)MRHD(V,tv,Marker);
+XIC(stop)MDF(D,off);
+ADD(k,1,k);
+GEQ(k,10)LES(k,20)OTE(go);
+GEQ(k,30)OTE(stop);
+"""
+
+
+def test_drive_instructions_in_ladder_are_transitional(mp) -> None:
+    # go is true in the scans 10..19 (set at the end of scan 9), stop from scan 30 on
+    watch = [
+        "on.EN", "on.DN", "tune.EN", "tune.ER", "tune.ERR", "tv.EN", "tv.ER", "tv.ERR",
+        "D.DriveEnableStatus", "off.EN", "off.DN",
+    ]  # fmt: skip
+    tr = mp.trace(LADDER, watch, scans=40, name="prog.rll")
+    # scan 10: MDO executes once; the drive shows enabled at once, DN at the update at 12 ms
+    assert [tr.at(t, "on.EN") for t in (0.009, 0.010, 0.019)] == [0, 1, 1]
+    assert tr.at(0.010, "D.DriveEnableStatus") == 1 and tr.at(0.011, "on.DN") == 0
+    assert tr.at(0.012, "on.DN") == 1
+    # MRAT on the same axis (loop open): no answer from the drive, error 12 at 12 ms; the
+    # rung staying true does not send it again
+    assert tr.at(0.011, "tune.ER") == 0
+    assert tr.at(0.012, "tune.ER") == 1 and tr.at(0.012, "tune.ERR") == 12
+    assert set(tr.col("tune.ERR")[12:20]) == {12.0}
+    # MRHD on a virtual axis: error 38 in the executing scan
+    assert tr.at(0.010, "tv.ER") == 1 and tr.at(0.010, "tv.ERR") == 38
+    # rung false from scan 20: EN cleared because DN or ER is set; DN and ER stay
+    assert [tr.at(0.020, n) for n in ("on.EN", "on.DN", "tune.EN", "tune.ER", "tv.EN")] == [
+        0,
+        1,
+        0,
+        1,
+        0,
+    ]
+    # the drive stays enabled until MDF in scan 30; MDF's DN at the update at 32 ms
+    assert tr.at(0.029, "D.DriveEnableStatus") == 1
+    assert tr.at(0.030, "D.DriveEnableStatus") == 0 and tr.at(0.030, "off.EN") == 1
+    assert tr.at(0.031, "off.DN") == 0 and tr.at(0.032, "off.DN") == 1
