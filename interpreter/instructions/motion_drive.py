@@ -6,10 +6,11 @@ They talk to a drive, so they are not U diagnostics: they run as on a controller
 drive axes are the servo model of docs 0101 and whose virtual axes have no drive at all.
 - A virtual axis is not an axis data type these instructions accept: error 38 at once.
 - MDO enables the drive of an axis whose loop is open (Axis Ready) and holds its output at
-  the requested level; nothing is wired to that output, so the axis does not move.
-  DriveEnableStatus shows on the tag at once and stays on until MDF, MSO, MSF or a shutdown
-  ends the direct drive state; DN follows the MSO rule (next planner update). MDF turns the
-  drive off again.
+  the requested level; nothing is wired to that output, so the axis does not move. As for
+  MSO, the drive message takes one planner update: DriveEnableStatus and DN are set then
+  (the reference sets DN when the drive enable is active). The drive stays enabled until
+  MDF, MSO, MSF or a shutdown ends the direct drive state; MDF's drive-off and DN likewise
+  come at the next update.
 - MDS needs a drive that supports the ramp attributes of direct velocity control; the servo
   model is a position-loop drive without them, so MDS is refused with error 86.
 - Tuning and hookup tests are services of a real drive with a motor; the simulated drive
@@ -58,6 +59,9 @@ class _Direct:
 
     axes: dict[int, Axis] = field(default_factory=dict)
     watched: set[int] = field(default_factory=set)
+    # requests that end direct drive, per axis: an MDO whose drive message is still under
+    # way when one of them executes does not enable the drive any more
+    ends: dict[int, int] = field(default_factory=dict)
 
 
 _direct: weakref.WeakKeyDictionary[MotionRuntime, _Direct] = weakref.WeakKeyDictionary()
@@ -71,9 +75,14 @@ def _state(rt: MotionRuntime) -> _Direct:
 
 
 def end_direct_drive(rt: MotionRuntime, ax: Axis) -> None:
-    """MDF, MSO, MSF and a shutdown end the direct drive state of MDO."""
-    if _state(rt).axes.pop(id(ax), None) is not None:
-        set_tag_bits(ax, DriveEnableStatus=0)
+    """MDF, MSO, MSF and a shutdown end the direct drive state of MDO.
+
+    The drive bits then follow the servo state again from the next planner update on (off,
+    or on with the loop after MSO), as they do after MSF or MSO on any drive axis.
+    """
+    st = _state(rt)
+    st.axes.pop(id(ax), None)
+    st.ends[id(ax)] = st.ends.get(id(ax), 0) + 1
 
 
 def _hold(rt: MotionRuntime, ax: Axis) -> None:
@@ -96,6 +105,23 @@ def _hold(rt: MotionRuntime, ax: Axis) -> None:
             st.watched.discard(id(g))
 
     rt.after_update(g, after_update)
+
+
+def _enable_next_update(rt: MotionRuntime, ax: Axis, ctl: list) -> None:
+    """MDO's drive message: the drive is enabled, and DN set, at the next planner update."""
+    st = _state(rt)
+    ends = st.ends.get(id(ax), 0)
+    g = ax.group
+    handle = rt.token(g)
+    rt.own(ctl, g, handle)
+
+    def enabled() -> None:
+        if st.ends.get(id(ax), 0) == ends and not g.core.servo_on[ax.index]:
+            _hold(rt, ax)
+        if rt.owns(ctl, g, handle):
+            set_bits(ctl, DN=1)
+
+    rt.after_update(g, enabled)
 
 
 def _drive_axis(rt: MotionRuntime, ctl: list, axis: list) -> Axis | None:
@@ -161,8 +187,7 @@ def mdo(ctx: ExecContext, rung: bool, axis: list, ctl: list, output: object, uni
         return
     if not _ready(rt, ctl, ax):
         return
-    _hold(rt, ax)
-    _done_next_update(rt, ax, ctl)
+    _enable_next_update(rt, ax, ctl)
 
 
 @implements("MDF")

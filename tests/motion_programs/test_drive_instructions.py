@@ -2,8 +2,9 @@
 
 Behaviour (docs/decisions/0077-drive-instructions.md, SPEC 9.32): a virtual axis has no drive
 and is refused with error 38 (Illegal Axis Data Type) in the executing scan; a drive axis is
-the servo model. MDO enables its drive (DriveEnableStatus, AxisStatus bit 1, shown at once)
-with nothing wired to the output, DN at the next planner update like MSO; MDF turns it off.
+the servo model. MDO enables its drive (DriveEnableStatus, AxisStatus bit 1) with nothing
+wired to the output: the drive message takes one planner update, as for MSO, and DN comes
+with the drive enable; MDF turns the drive off, again at the next update.
 MDS needs ramp attributes the servo model does not have: error 86 at once. Tuning and hookup
 tests are drive services the model does not carry out: error 12 at the next update.
 
@@ -38,10 +39,11 @@ IF k = 11 THEN MDF(D, c2); END_IF;"""
     ]  # fmt: skip
     tr = mp.trace(prog(body), watch, scans=20)
     assert tr.at(0.0, "D.DriveEnableStatus") == 0 and tr.at(0.0, "c1.EN") == 0
-    # scan 1: EN, and the drive enable shows at once; DN waits for the update at 2 ms
+    # scan 1: EN; the drive enable and DN come together with the update at 2 ms
     assert tr.at(0.001, "c1.EN") == 1 and tr.at(0.001, "c1.DN") == 0
-    assert tr.at(0.001, "D.DriveEnableStatus") == 1
+    assert tr.at(0.001, "D.DriveEnableStatus") == 0
     assert tr.at(0.002, "c1.DN") == 1 and tr.at(0.002, "c1.ER") == 0
+    assert tr.at(0.002, "D.DriveEnableStatus") == 1
     # the drive stays enabled across the updates at 2, 4 ... 10 ms; the loop stays open:
     # AxisStatus = DriveEnableStatus (bit 1) = 2, ServoActionStatus (bit 0) off
     for t in (0.002, 0.004, 0.006, 0.008, 0.010):
@@ -50,8 +52,9 @@ IF k = 11 THEN MDF(D, c2); END_IF;"""
         assert tr.at(t, "D.ServoActionStatus") == 0, t
         # nothing is wired to the drive output: the axis does not move
         assert tr.at(t, "D.ActualPosition") == 0, t
-    # MDF in scan 11: drive off at once, DN at the update at 12 ms, and it stays off
-    assert tr.at(0.011, "D.DriveEnableStatus") == 0 and tr.at(0.011, "c2.DN") == 0
+    # MDF in scan 11: drive off and DN with the update at 12 ms, and it stays off
+    assert tr.at(0.011, "D.DriveEnableStatus") == 1 and tr.at(0.011, "c2.DN") == 0
+    assert tr.at(0.011, "c2.EN") == 1
     assert tr.at(0.012, "c2.DN") == 1
     for t in (0.012, 0.014, 0.019):
         assert tr.at(t, "D.DriveEnableStatus") == 0 and tr.at(t, "D.AxisStatus") == 0, t
@@ -78,8 +81,9 @@ IF k = 4 THEN MDO(D, c6, 1.0, volts); END_IF;"""
     # -101 percent is beyond the output range too (the limit holds in both directions)
     assert tr.at(0.0, "c3.ERR") == 13 and tr.at(0.0, "c3.EXERR") == 2
     # 100 percent is the whole output range: accepted, done at the next update (0.002)
-    assert tr.at(0.0, "E.DriveEnableStatus") == 1 and tr.at(0.0, "c4.DN") == 0
+    assert tr.at(0.0, "E.DriveEnableStatus") == 0 and tr.at(0.0, "c4.DN") == 0
     assert tr.at(0.002, "c4.DN") == 1 and tr.at(0.002, "c4.ER") == 0
+    assert tr.at(0.002, "E.DriveEnableStatus") == 1
     # D's loop was closed by MSO (DN at 0.002): MDO needs Axis Ready, error 4
     assert tr.at(0.002, "c5.DN") == 1
     assert tr.at(0.004, "c6.ER") == 1 and tr.at(0.004, "c6.ERR") == 4
@@ -97,12 +101,14 @@ IF k = 7 THEN MSF(D, c5); END_IF;"""
     ]  # fmt: skip
     tr = mp.trace(prog(body), watch, scans=14)
     assert tr.at(0.002, "D.DriveEnableStatus") == 1 and tr.at(0.002, "E.DriveEnableStatus") == 1
-    # MSO closes D's loop at the update at 4 ms: the drive stays on, now with the servo loop
+    # MSO closes D's loop at the update at 4 ms: the drive stays on throughout, now with
+    # the servo loop
+    assert tr.at(0.003, "D.DriveEnableStatus") == 1 and tr.at(0.003, "D.ServoActionStatus") == 0
     assert tr.at(0.004, "c3.DN") == 1 and tr.at(0.004, "D.ServoActionStatus") == 1
     assert tr.at(0.004, "D.DriveEnableStatus") == 1
-    # MASD ends E's direct drive at once (drive off, shut down)
-    assert tr.at(0.003, "E.DriveEnableStatus") == 0 and tr.at(0.003, "E.ShutdownStatus") == 1
-    assert tr.at(0.006, "E.DriveEnableStatus") == 0
+    # MASD ends E's direct drive: shut down at once, drive off with the update at 4 ms
+    assert tr.at(0.003, "E.ShutdownStatus") == 1 and tr.at(0.003, "E.DriveEnableStatus") == 1
+    assert tr.at(0.004, "E.DriveEnableStatus") == 0 and tr.at(0.006, "E.DriveEnableStatus") == 0
     # MSF in scan 7: loop open and drive off from the update at 8 ms on, not held by MDO
     assert tr.at(0.008, "c5.DN") == 1
     for t in (0.008, 0.010, 0.013):
@@ -199,10 +205,10 @@ def test_drive_instructions_in_ladder_are_transitional(mp) -> None:
         "D.DriveEnableStatus", "off.EN", "off.DN",
     ]  # fmt: skip
     tr = mp.trace(LADDER, watch, scans=40, name="prog.rll")
-    # scan 10: MDO executes once; the drive shows enabled at once, DN at the update at 12 ms
+    # scan 10: MDO executes once; drive enable and DN with the update at 12 ms
     assert [tr.at(t, "on.EN") for t in (0.009, 0.010, 0.019)] == [0, 1, 1]
-    assert tr.at(0.010, "D.DriveEnableStatus") == 1 and tr.at(0.011, "on.DN") == 0
-    assert tr.at(0.012, "on.DN") == 1
+    assert tr.at(0.011, "D.DriveEnableStatus") == 0 and tr.at(0.011, "on.DN") == 0
+    assert tr.at(0.012, "on.DN") == 1 and tr.at(0.012, "D.DriveEnableStatus") == 1
     # MRAT on the same axis (loop open): no answer from the drive, error 12 at 12 ms; the
     # rung staying true does not send it again
     assert tr.at(0.011, "tune.ER") == 0
@@ -218,7 +224,20 @@ def test_drive_instructions_in_ladder_are_transitional(mp) -> None:
         1,
         0,
     ]
-    # the drive stays enabled until MDF in scan 30; MDF's DN at the update at 32 ms
-    assert tr.at(0.029, "D.DriveEnableStatus") == 1
-    assert tr.at(0.030, "D.DriveEnableStatus") == 0 and tr.at(0.030, "off.EN") == 1
-    assert tr.at(0.031, "off.DN") == 0 and tr.at(0.032, "off.DN") == 1
+    # the drive stays enabled until MDF in scan 30; drive off and DN at the update at 32 ms
+    assert tr.at(0.031, "D.DriveEnableStatus") == 1 and tr.at(0.030, "off.EN") == 1
+    assert tr.at(0.031, "off.DN") == 0
+    assert tr.at(0.032, "off.DN") == 1 and tr.at(0.032, "D.DriveEnableStatus") == 0
+
+
+def test_a_request_that_ends_direct_drive_wins_over_a_pending_mdo(mp) -> None:
+    # MDO in scan 0 sends its drive message (answered at the update at 2 ms); MSF in scan 1
+    # reaches the drive after it, so at 2 ms the drive is off although MDO is done
+    body = """IF k = 0 THEN MDO(D, c1, 3.0, volts); END_IF;
+IF k = 1 THEN MSF(D, c2); END_IF;"""
+    tr = mp.trace(prog(body), ["c1.DN", "c2.DN", "D.DriveEnableStatus"], scans=6)
+    assert tr.at(0.002, "c1.DN") == 1 and tr.at(0.002, "c2.DN") == 1
+    for t in (0.002, 0.004, 0.005):
+        assert tr.at(t, "D.DriveEnableStatus") == 0, t
+    # and these instructions are simulated: no U304 warning
+    assert "U304" not in tr.err
