@@ -241,3 +241,23 @@ IF k = 1 THEN MSF(D, c2); END_IF;"""
         assert tr.at(t, "D.DriveEnableStatus") == 0, t
     # and these instructions are simulated: no U304 warning
     assert "U304" not in tr.err
+
+
+def test_group_shutdown_ends_direct_drive(mp) -> None:
+    src = """VAR
+  G : MOTION_GROUP;
+  D : AXIS_SERVO;
+  c1, c2 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN MDO(D, c1, 1.0, volts); END_IF;
+IF k = 5 THEN MGSD(G, c2); END_IF;
+k := k + 1;
+"""
+    tr = mp.trace(src, ["c1.DN", "c2.DN", "D.DriveEnableStatus", "D.ShutdownStatus"], scans=10)
+    assert tr.at(0.002, "D.DriveEnableStatus") == 1 and tr.at(0.005, "D.DriveEnableStatus") == 1
+    # MGSD in scan 5: shut down at once; a drive axis in the group: DN and drive off at 6 ms
+    assert tr.at(0.005, "D.ShutdownStatus") == 1 and tr.at(0.005, "c2.DN") == 0
+    assert tr.at(0.006, "c2.DN") == 1
+    for t in (0.006, 0.008, 0.009):
+        assert tr.at(t, "D.DriveEnableStatus") == 0, t
