@@ -23,6 +23,13 @@ from .motion_common import begin, clear_on_prescan, configured, fail, runtime
 from .registry import implements, prescan
 
 
+def _end_direct(rt: MotionRuntime, ax: Axis) -> None:
+    """MSO, MSF and a shutdown also end MDO's direct drive state (motion_drive.py)."""
+    from .motion_drive import end_direct_drive  # motion_drive uses set_tag_bits from here
+
+    end_direct_drive(rt, ax)
+
+
 def _complete(rt: MotionRuntime, ax: Axis, ctl: list, handle: int) -> None:
     if ax.group.core.virtual[ax.index]:
         set_bits(ctl, DN=1)
@@ -44,6 +51,7 @@ def msf(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     rt = runtime(ctx)
     ax = configured(rt, ctl, rt.axis(axis))
     if ax is not None:
+        _end_direct(rt, ax)
         _complete(rt, ax, ctl, ax.group.core.servo_off_axis(ax.index).handle)
 
 
@@ -70,6 +78,7 @@ def mso(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     if not r.ok:  # a shut-down axis refuses servo on (error 7) until MASR
         fail(rt, ctl, r.error)
         return
+    _end_direct(rt, ax)
     _complete(rt, ax, ctl, r.handle)
 
 
@@ -113,6 +122,7 @@ def masd(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     ax = configured(rt, ctl, rt.axis(axis))
     if ax is not None:
         r = ax.group.core.shutdown_axis(ax.index)
+        _end_direct(rt, ax)
         set_tag_bits(ax, ShutdownStatus=1)
         _complete(rt, ax, ctl, r.handle)
 
@@ -139,6 +149,7 @@ def mgsd(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
         return
     for ax in g.axes:
         g.core.shutdown_axis(ax.index)
+        _end_direct(rt, ax)
         set_tag_bits(ax, ShutdownStatus=1)
     _group_done(rt, g, ctl, rt.token(g))
 
