@@ -37,9 +37,6 @@ from .motion_layout import (
 DEFAULT_CUP_MS = 2.0
 _MG = struct_type("MOTION_GROUP").index
 
-# instructions whose motion reports completion with PC (MAJ never completes; MDAC has no PC)
-_PC_KINDS = frozenset({"MAM", "MAS", "MGS", "MATC", "MAH", "MAW"})
-
 # axis members written after every planner update (REAL) ...
 _REALS = (
     "ActualPosition", "CommandPosition", "ActualVelocity", "CommandVelocity",
@@ -61,11 +58,18 @@ class Axis:
 
 @dataclass(eq=False, slots=True)
 class Tracked:
-    """A motion process started by an instruction, whose events drive its control bits."""
+    """A motion process started by an instruction, whose events drive its control bits.
 
-    kind: str  # instruction name: MAM, MAJ, MAS, MGS, MATC, MDAC
+    What its end means is said by the process itself, not by the instruction's name
+    (docs/decisions/0104-motion-binding.md): `pc` -- completion sets PC (MAJ never
+    completes, MAG and MAR only end); `link` -- a master link (MDAC): IP until the link
+    ends, AC while a motion driven by it runs, no ACCEL/DECEL/PC.
+    """
+
     control: list  # the MOTION_INSTRUCTION storage list
-    axis: Axis | None
+    axes: tuple[Axis, ...] = ()  # axes whose Start*Position it sets when it goes in process
+    pc: bool = False
+    link: bool = False
     profile: list | None = None  # CAM_PROFILE element [0] whose Status counts users
     counted: bool = False  # this process holds one count on profile
     on_start: Callable[[Group], None] | None = None
@@ -281,8 +285,8 @@ class MotionRuntime:
         own = self.owns(ctl, g, ev.handle)
         k = ev.kind
         if k is EventKind.IN_PROCESS:
-            if tr.axis is not None:
-                self._start_positions(tr.axis)
+            for ax in tr.axes:
+                self._start_positions(ax)
             if tr.on_start is not None:
                 tr.on_start(g)
         elif k is EventKind.PENDING_STARTED:
@@ -293,8 +297,8 @@ class MotionRuntime:
             if tr.on_end is not None:
                 tr.on_end(g, k is EventKind.COMPLETE)
             if own:
-                pc = 1 if k is EventKind.COMPLETE and tr.kind in _PC_KINDS else 0
-                if tr.kind == "MDAC":
+                pc = 1 if k is EventKind.COMPLETE and tr.pc else 0
+                if tr.link:
                     set_bits(ctl, IP=0, AC=0)
                 else:
                     set_bits(ctl, IP=0, ACCEL=0, DECEL=0, PC=pc)
@@ -319,7 +323,7 @@ class MotionRuntime:
         """MDAC .AC follows whether a master-driven motion of the link is running."""
         in_use = None
         for h, tr in g.tracked.items():
-            if tr.kind == "MDAC" and tr.control[AC] and self.owns(tr.control, g, h):
+            if tr.link and tr.control[AC] and self.owns(tr.control, g, h):
                 if in_use is None:
                     in_use = g.core.links_in_use()
                 if h not in in_use:
