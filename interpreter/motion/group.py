@@ -43,32 +43,29 @@ from interpreter.motion.homing import homing_error
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCam, TimeCamSet
+from stdlib import catalog
+
+
+def _motion_status_bits() -> dict[str, int]:
+    """Bit numbers of the AXIS MotionStatus word, read from the catalog: the BOOL members
+    with a `bit` that follow the MotionStatus member of the AXIS types (stdlib/types)."""
+    td = catalog().type("AXIS_VIRTUAL")
+    assert td is not None
+    bits: dict[str, int] = {}
+    after = False
+    for m in td.members:
+        if m.name == "MotionStatus":
+            after = True
+        elif after:
+            if m.bit is None:
+                break
+            bits[m.name] = m.bit
+    assert bits, "AXIS MotionStatus bits missing from the catalog"
+    return bits
+
 
 # Bit numbers of the AXIS MotionStatus word (names are the AXIS attribute names).
-STATUS_BITS: dict[str, int] = {
-    "AccelStatus": 0,
-    "DecelStatus": 1,
-    "MoveStatus": 2,
-    "JogStatus": 3,
-    "GearingStatus": 4,
-    "HomingStatus": 5,
-    "StoppingStatus": 6,
-    "AxisHomedStatus": 7,
-    "PositionCamStatus": 8,
-    "TimeCamStatus": 9,
-    "PositionCamPendingStatus": 10,
-    "TimeCamPendingStatus": 11,
-    "GearingLockStatus": 12,
-    "PositionCamLockStatus": 13,
-    "TimeCamLockStatus": 14,
-    "MasterOffsetMoveStatus": 15,
-    "CoordinatedMotionStatus": 16,
-    "MoveLockStatus": 22,
-    "JogLockStatus": 24,
-    "MasterOffsetMoveLockStatus": 26,
-    "MaximumSpeedExceeded": 27,
-}
-
+STATUS_BITS: dict[str, int] = _motion_status_bits()
 _STATUS_SHIFTS = np.array(list(STATUS_BITS.values()), dtype=np.uint32)
 _VEL_EPS = 1e-9
 
