@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from interpreter.motion.clock import MasterClock
-from interpreter.motion.enums import EventKind, GeneratorKind
+from interpreter.motion.enums import EventKind, GeneratorKind, LockDirection
 from interpreter.motion.profiles import Limits, MoveProfile
 
 
@@ -72,3 +74,208 @@ class ProfileGen:
         if self.v * self.a < -1e-12:
             return EventKind.DECEL
         return EventKind.CONSTANT
+
+
+_PHASES = (EventKind.ACCEL, EventKind.DECEL, EventKind.CONSTANT)
+_PHASE_CODE = {None: -1, EventKind.ACCEL: 0, EventKind.DECEL: 1, EventKind.CONSTANT: 2}
+_KIND_STATUS = {
+    GeneratorKind.MOVE: "MoveStatus",
+    GeneratorKind.JOG: "JogStatus",
+    GeneratorKind.STOP: "StoppingStatus",
+}
+
+
+@dataclass(slots=True)
+class Contribution:
+    """What a set of motion processes adds to its axes in one update (one row per process
+    and axis): position change, command velocity and acceleration."""
+
+    axis: np.ndarray
+    dpos: np.ndarray
+    vel: np.ndarray
+    acc: np.ndarray
+
+
+EMPTY = Contribution(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
+
+
+class ProfileSet:
+    """The moves, jogs and stops of a group, stepped together with numpy.
+
+    The ProfileGen objects are the state between updates (start calls, merges and MCD edit
+    them); while nothing touches them the state lives in arrays, one row per generator,
+    with every profile's segment table padded into one matrix. Time-driven generators need
+    no Python per update; master-driven ones advance their master clock one by one (as
+    time cams do). `gens` hands out the objects (arrays copied back) and marks the rows for
+    a rebuild; `view()` only reads them.
+    """
+
+    def __init__(self) -> None:
+        self._gens: list[ProfileGen] = []
+        self._dirty = True  # rows must be rebuilt from the objects
+        self._fresh = True  # the objects hold the latest state
+        self.done: list[ProfileGen] = []  # reached their end in the latest step
+
+    @property
+    def gens(self) -> list[ProfileGen]:
+        self._sync_out()
+        self._dirty = True
+        return self._gens
+
+    def view(self) -> list[ProfileGen]:
+        self._sync_out()
+        return self._gens
+
+    def __len__(self) -> int:
+        return len(self._gens)
+
+    def _sync_out(self) -> None:
+        if self._fresh:
+            return
+        f = float
+        for k, g in enumerate(self._gens):
+            g.n = int(self._n[k])
+            g.t = f(self._t[k])
+            g.last_p = f(self._last[k])
+            g.v_native = f(self._vn[k])
+            g.v = f(self._v[k])
+            g.a = f(self._a[k])
+            g.phase = None if self._phase[k] < 0 else _PHASES[self._phase[k]]
+        self._fresh = True
+
+    def _rebuild(self) -> None:
+        gens = self._gens
+        f = float
+        self._axis = np.array([g.axis for g in gens], dtype=np.intp)
+        self._timed = np.array([g.clock is None for g in gens], dtype=bool)
+        self._md_rows = np.flatnonzero(~self._timed).tolist()
+        self._n = np.array([g.n for g in gens], dtype=np.int64)
+        self._t = np.array([g.t for g in gens], dtype=f)
+        self._t_offset = np.array([g.t_offset for g in gens], dtype=f)
+        self._last = np.array([g.last_p for g in gens], dtype=f)
+        self._vn = np.array([g.v_native for g in gens], dtype=f)
+        self._v = np.array([g.v for g in gens], dtype=f)
+        self._a = np.array([g.a for g in gens], dtype=f)
+        self._phase = np.array([_PHASE_CODE[g.phase] for g in gens], dtype=np.int64)
+        kinds = list(_KIND_STATUS)
+        self._kind = np.array([kinds.index(g.kind) for g in gens], dtype=np.intp)
+        self._ends = np.array([g.kind != GeneratorKind.JOG for g in gens], dtype=bool)
+        self._duration = np.array([g.profile.duration for g in gens], dtype=f)
+        width = max((len(g.profile.t0) for g in gens), default=1)
+        seg = np.zeros((5, len(gens), width))
+        seg[0] = np.inf  # padding segments never start
+        for k, g in enumerate(gens):
+            m = len(g.profile.t0)
+            pr = g.profile
+            seg[0, k, :m], seg[1, k, :m], seg[2, k, :m] = pr.t0, pr.p0, pr.v0
+            seg[3, k, :m], seg[4, k, :m] = pr.a0, pr.j
+        self._seg = seg
+        self._all_rows = np.arange(len(gens))
+        self._dirty = False
+
+    # -- stepping -----------------------------------------------------------------
+    def step(
+        self,
+        cup: float,
+        level_sel: tuple[np.ndarray, int] | None,
+        positions: tuple[np.ndarray, np.ndarray],
+        velocities: tuple[np.ndarray, np.ndarray],
+        events: list[tuple[int, EventKind, int]],
+    ) -> Contribution:
+        """Advance the generators (all, or those whose axis has the given level) one update.
+        Generators that reached their end are left in `done` (the group ends them)."""
+        self.done = []
+        if not self._gens:
+            return EMPTY
+        if self._dirty:
+            self._rebuild()
+        if level_sel is None:
+            sel = self._all_rows
+        else:
+            sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
+            if len(sel) == 0:
+                return EMPTY
+        self._fresh = False
+        timed = self._timed[sel]
+        n = self._n[sel] + timed
+        self._n[sel] = n
+        t = np.where(timed, n * cup, 0.0)
+        mvel = np.ones(len(sel))
+        if self._md_rows:
+            in_sel = set(sel.tolist()) if level_sel is not None else None
+            pos_in_sel = {int(r): j for j, r in enumerate(sel)} if in_sel is not None else None
+            for k in self._md_rows:
+                if in_sel is not None and k not in in_sel:
+                    continue
+                j = k if pos_in_sel is None else pos_in_sel[k]
+                clock = self._gens[k].clock
+                assert clock is not None
+                ref, m = int(clock.reference), clock.master  # 0 actual, 1 command
+                t[j] = clock.advance(float(positions[ref][m])) - self._t_offset[k]
+                mvel[j] = velocities[ref][m]
+        self._t[sel] = t
+        tt = np.maximum(t, 0.0)
+        seg = self._seg[:, sel]
+        i = np.maximum((seg[0] <= tt[:, None]).sum(axis=1) - 1, 0)
+        rows = np.arange(len(sel))
+        t0, p0, v0, a0, jj = (seg[c, rows, i] for c in range(5))
+        d = tt - t0
+        p = p0 + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
+        v = v0 + d * (a0 + d * jj / 2.0)
+        a = a0 + d * jj
+        self._vn[sel] = v
+        vel = v * mvel  # master driven: chain rule, master acceleration neglected
+        acc = a * mvel * mvel
+        self._v[sel] = vel
+        self._a[sel] = acc
+        dp = p - self._last[sel]
+        self._last[sel] = p
+        va = vel * acc
+        phase = np.where(
+            (va > 1e-12) | ((np.abs(vel) <= 1e-12) & (np.abs(acc) > 1e-12)),
+            0,
+            np.where(va < -1e-12, 1, 2),
+        )
+        changed = phase != self._phase[sel]
+        finished = self._ends[sel] & (t >= self._duration[sel])
+        done = self.done
+        if changed.any() or finished.any():
+            self._phase[sel] = phase
+            for j in np.flatnonzero(changed | finished).tolist():
+                g = self._gens[int(sel[j])]
+                if changed[j]:
+                    events.append((g.handle, _PHASES[int(phase[j])], g.axis))
+                if finished[j]:
+                    done.append(g)
+        return Contribution(self._axis[sel], dp, vel, acc)
+
+    # -- queries ------------------------------------------------------------------
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        if self._dirty:
+            self._rebuild()
+        if not self._gens:
+            return np.zeros(n), np.zeros(n)
+        return np.bincount(self._axis, self._v, n), np.bincount(self._axis, self._a, n)
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """MoveStatus, JogStatus, StoppingStatus and the lock bits of master-driven moves
+        and jogs that follow their master (a lock direction other than None, locked)."""
+        if self._dirty:
+            self._rebuild()
+        out = {}
+        for code, name in enumerate(_KIND_STATUS.values()):
+            arr = np.zeros(n, dtype=bool)
+            arr[self._axis[self._kind == code]] = True
+            out[name] = arr
+        out["MoveLockStatus"] = np.zeros(n, dtype=bool)
+        out["JogLockStatus"] = np.zeros(n, dtype=bool)
+        for k in self._md_rows:  # the master clocks live in the objects
+            g = self._gens[k]
+            c = g.clock
+            assert c is not None
+            if c.lock_direction != LockDirection.NONE and c.locked:
+                if g.kind == GeneratorKind.MOVE:
+                    out["MoveLockStatus"][g.axis] = True
+                elif g.kind == GeneratorKind.JOG:
+                    out["JogLockStatus"][g.axis] = True
+        return out

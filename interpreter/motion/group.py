@@ -38,7 +38,7 @@ from interpreter.motion.enums import (
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.events import Watch, WatchSet
 from interpreter.motion.gear import GearSet
-from interpreter.motion.generators import ProfileGen
+from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import homing_error
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
@@ -143,7 +143,7 @@ class MotionGroup:
         self._max_level = 0
         self._levels_dirty = False
         self.status: dict[str, np.ndarray] = {}
-        self._gens: list[ProfileGen] = []
+        self._moves = ProfileSet()  # moves, jogs and stops
         self._cams = TimeCamSet()
         self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
@@ -157,6 +157,11 @@ class MotionGroup:
         self._last_gear_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
         self._homing: dict[int, int] = {}  # axis -> handle of a passive homing that waits
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
+
+    @property
+    def _gens(self) -> list[ProfileGen]:
+        """The move/jog/stop generators, for start calls that edit them (rows rebuilt)."""
+        return self._moves.gens
 
     # -- configuration ---------------------------------------------------------------
     def add_axis(
@@ -354,7 +359,7 @@ class MotionGroup:
     def axis_busy(self, axis: int) -> bool:
         """Is any generator or time cam running on the axis (or is it still moving)?"""
         return (
-            any(g.axis == axis for g in self._gens)
+            any(g.axis == axis for g in self._moves.view())
             or bool(self._cams.on_axis(axis))
             or bool(len(self._gears.rows_on(axis)))
             or abs(float(self.command_velocity[axis])) > _VEL_EPS
@@ -362,7 +367,7 @@ class MotionGroup:
 
     def links_in_use(self) -> set[int]:
         """MDAC handles that drive a running master-driven generator or cam (MDAC .AC)."""
-        used = {g.link for g in self._gens if g.link}
+        used = {g.link for g in self._moves.view() if g.link}
         used.update(c.link for c in self._cams.cams if c.link)
         return used
 
@@ -778,7 +783,7 @@ class MotionGroup:
         self.actual_position[axis] += delta
         self.shift[axis] += delta
         self._gears.shift_master(axis, delta)
-        clocks = [g.clock for g in self._gens if g.clock is not None]
+        clocks = [g.clock for g in self._moves.view() if g.clock is not None]
         clocks += [c.clock for c in self._cams.cams if c.clock is not None]
         for clock in clocks:
             if clock.master == axis:
@@ -1039,7 +1044,7 @@ class MotionGroup:
     def _compute_levels(self) -> None:
         """Masters before slaves: level(slave) = level(master) + 1 (cycles are capped)."""
         n = len(self.axes)
-        edges = [(g.axis, g.clock.master) for g in self._gens if g.clock is not None]
+        edges = [(g.axis, g.clock.master) for g in self._moves.view() if g.clock is not None]
         edges += [(c.axis, c.clock.master) for c in self._cams.cams if c.clock is not None]
         edges += self._gears.edges()
         level = np.zeros(n, dtype=np.intp)
@@ -1072,28 +1077,15 @@ class MotionGroup:
         prev_actual = self.actual_position.copy()
         for lvl in range(self._max_level + 1):
             single = self._max_level == 0
-            ax: list[int] = []
-            dp: list[float] = []
-            vv: list[float] = []
-            aa: list[float] = []
-            for g in list(self._gens):
-                if not single and self._level[g.axis] != lvl:
-                    continue
-                if g.clock is None:
-                    d = g.step(cup, 0.0, 0.0)
-                else:
-                    pos, mvel = self._master_state(g.clock)
-                    d = g.step(cup, pos, mvel)
-                ax.append(g.axis)
-                dp.append(d)
-                vv.append(g.v)
-                aa.append(g.a)
-                ph = g.current_phase()
-                if ph != g.phase:
-                    g.phase = ph
-                    ev.append((g.handle, ph, g.axis))
-                if g.kind != GeneratorKind.JOG and g.finished:
-                    self._end_gen(g, EventKind.COMPLETE, ev)
+            ms = self._moves.step(
+                cup,
+                None if single else (self._level, lvl),
+                (self.actual_position, self.command_position),
+                (self.actual_velocity, self.command_velocity),
+                ev,
+            )
+            for g in self._moves.done:
+                self._end_gen(g, EventKind.COMPLETE, ev)
             cs = cams.step(
                 cup,
                 None if single else (self._level, lvl),
@@ -1108,11 +1100,11 @@ class MotionGroup:
                 (self.actual_velocity, self.command_velocity),
             )
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
-            if ax or len(cs.axis) or len(gs.axis):
-                axes = np.concatenate((np.asarray(ax, dtype=np.intp), cs.axis, gs.axis))
-                dpos = np.bincount(axes, np.concatenate((dp, cs.dpos, gs.dpos)), n)
-                vel = np.bincount(axes, np.concatenate((vv, cs.vel, gs.vel)), n)
-                acc = np.bincount(axes, np.concatenate((aa, cs.acc, gs.acc)), n)
+            if len(ms.axis) or len(cs.axis) or len(gs.axis):
+                axes = np.concatenate((ms.axis, cs.axis, gs.axis))
+                dpos = np.bincount(axes, np.concatenate((ms.dpos, cs.dpos, gs.dpos)), n)
+                vel = np.bincount(axes, np.concatenate((ms.vel, cs.vel, gs.vel)), n)
+                acc = np.bincount(axes, np.concatenate((ms.acc, cs.acc, gs.acc)), n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]
@@ -1129,11 +1121,9 @@ class MotionGroup:
         if post:  # generators started at this update report their start velocity now
             vel, acc = self._cams.velocity_sums(n)
             gv, ga = self._gears.velocity_sums(n)
-            vel += gv
-            acc += ga
-            for g in self._gens:
-                vel[g.axis] += g.v
-                acc[g.axis] += g.a
+            mv, ma = self._moves.velocity_sums(n)
+            vel += gv + mv
+            acc += ga + ma
             self.command_velocity[:] = vel
             self.command_acceleration[:] = acc
         self.updates += 1
@@ -1147,14 +1137,7 @@ class MotionGroup:
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        for name, kind in (
-            ("MoveStatus", GeneratorKind.MOVE),
-            ("JogStatus", GeneratorKind.JOG),
-            ("StoppingStatus", GeneratorKind.STOP),
-        ):
-            arr = np.zeros(n, dtype=bool)
-            arr[[g.axis for g in self._gens if g.kind == kind]] = True
-            st[name] = arr
+        st.update(self._moves.status(n))
         tc = np.zeros(n, dtype=bool)
         tc[self._cams.active_axes()] = True
         st["TimeCamStatus"] = tc
@@ -1164,18 +1147,6 @@ class MotionGroup:
         tl = np.zeros(n, dtype=bool)
         tl[self._cams.locked_axes()] = True
         st["TimeCamLockStatus"] = tl
-        # master-driven moves and jogs with a lock direction: following their master
-        for name, kind in (
-            ("MoveLockStatus", GeneratorKind.MOVE),
-            ("JogLockStatus", GeneratorKind.JOG),
-        ):
-            arr = np.zeros(n, dtype=bool)
-            arr[[
-                g.axis for g in self._gens
-                if g.kind == kind and g.clock is not None
-                and g.clock.lock_direction != LockDirection.NONE and g.clock.locked
-            ]] = True  # fmt: skip
-            st[name] = arr
         cm = np.zeros(n, dtype=bool)
         cm[[lk.slave for lk in self._links_active.values()]] = True
         cm[[lk.slave for lk in self._links_pending.values()]] = True
