@@ -162,14 +162,17 @@ class ProfileSet:
         self._ends = np.array([g.kind != GeneratorKind.JOG for g in gens], dtype=bool)
         self._duration = np.array([g.profile.duration for g in gens], dtype=f)
         width = max((len(g.profile.t0) for g in gens), default=1)
-        seg = np.zeros((5, len(gens), width))
-        seg[0] = np.inf  # padding segments never start
-        for k, g in enumerate(gens):
-            m = len(g.profile.t0)
+        # segment k of row r: start time in _t0[r, k] (padding never starts), and its
+        # (start, p, v, a, jerk) in _coef[r * width + k]
+        self._t0 = np.full((len(gens), width), np.inf)
+        coef = np.zeros((len(gens) * width, 5))
+        for r, g in enumerate(gens):
             pr = g.profile
-            seg[0, k, :m], seg[1, k, :m], seg[2, k, :m] = pr.t0, pr.p0, pr.v0
-            seg[3, k, :m], seg[4, k, :m] = pr.a0, pr.j
-        self._seg = seg
+            m = len(pr.t0)
+            self._t0[r, :m] = pr.t0
+            coef[r * width : r * width + m] = np.column_stack((pr.t0, pr.p0, pr.v0, pr.a0, pr.j))
+        self._coef = coef
+        self._base = np.arange(len(gens), dtype=np.intp) * width
         self._all_rows = np.arange(len(gens))
         self._dirty = False
 
@@ -189,43 +192,37 @@ class ProfileSet:
             return EMPTY
         if self._dirty:
             self._rebuild()
+        sel: slice | np.ndarray
         if level_sel is None:
-            sel = self._all_rows
+            sel = slice(None)  # every row: slices, no copies
         else:
             sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
             if len(sel) == 0:
                 return EMPTY
         self._fresh = False
-        timed = self._timed[sel]
-        n = self._n[sel] + timed
-        self._n[sel] = n
-        t = np.where(timed, n * cup, 0.0)
-        mvel = np.ones(len(sel))
+        self._n[sel] += self._timed[sel]  # a time-driven clock is counted updates (no drift)
+        t = self._n[sel] * cup
+        mvel: np.ndarray | None = None
         if self._md_rows:
-            in_sel = set(sel.tolist()) if level_sel is not None else None
-            pos_in_sel = {int(r): j for j, r in enumerate(sel)} if in_sel is not None else None
-            for k in self._md_rows:
-                if in_sel is not None and k not in in_sel:
-                    continue
-                j = k if pos_in_sel is None else pos_in_sel[k]
-                clock = self._gens[k].clock
-                assert clock is not None
-                ref, m = int(clock.reference), clock.master  # 0 actual, 1 command
-                t[j] = clock.advance(float(positions[ref][m])) - self._t_offset[k]
-                mvel[j] = velocities[ref][m]
+            t = self._master_times(sel, positions, velocities, t)
+            mvel = self._mvel
         self._t[sel] = t
-        tt = np.maximum(t, 0.0)
-        seg = self._seg[:, sel]
-        i = np.maximum((seg[0] <= tt[:, None]).sum(axis=1) - 1, 0)
-        rows = np.arange(len(sel))
-        t0, p0, v0, a0, jj = (seg[c, rows, i] for c in range(5))
-        d = tt - t0
-        p = p0 + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
+        if mvel is not None:  # a master backing up before the start holds the profile at 0
+            t = np.maximum(t, 0.0)
+        # segment in use: the last one started at t (segment 0 starts at 0)
+        seg = (self._t0[sel] <= t[:, None]).sum(axis=1) - 1
+        c = self._coef[self._base[sel] + seg]
+        d = t - c[:, 0]
+        v0, a0, jj = c[:, 2], c[:, 3], c[:, 4]
+        p = c[:, 1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
         v = v0 + d * (a0 + d * jj / 2.0)
         a = a0 + d * jj
         self._vn[sel] = v
-        vel = v * mvel  # master driven: chain rule, master acceleration neglected
-        acc = a * mvel * mvel
+        if mvel is None:
+            vel, acc = v, a
+        else:  # master driven: chain rule, master acceleration neglected
+            mv = mvel if level_sel is None else mvel[sel]
+            vel, acc = v * mv, a * mv * mv
         self._v[sel] = vel
         self._a[sel] = acc
         dp = p - self._last[sel]
@@ -237,17 +234,43 @@ class ProfileSet:
             np.where(va < -1e-12, 1, 2),
         )
         changed = phase != self._phase[sel]
-        finished = self._ends[sel] & (t >= self._duration[sel])
+        finished = self._ends[sel] & (self._t[sel] >= self._duration[sel])
         done = self.done
-        if changed.any() or finished.any():
+        flagged = changed | finished
+        if flagged.any():
             self._phase[sel] = phase
-            for j in np.flatnonzero(changed | finished).tolist():
-                g = self._gens[int(sel[j])]
+            rows = self._all_rows[sel]
+            for j in np.flatnonzero(flagged).tolist():
+                g = self._gens[int(rows[j])]
                 if changed[j]:
                     events.append((g.handle, _PHASES[int(phase[j])], g.axis))
                 if finished[j]:
                     done.append(g)
         return Contribution(self._axis[sel], dp, vel, acc)
+
+    def _master_times(
+        self,
+        sel: slice | np.ndarray,
+        positions: tuple[np.ndarray, np.ndarray],
+        velocities: tuple[np.ndarray, np.ndarray],
+        t: np.ndarray,
+    ) -> np.ndarray:
+        """Own clocks of the master-driven rows in sel (master distance, one by one); their
+        master velocities are left in _mvel (1 for time-driven rows)."""
+        rows = self._all_rows[sel]
+        where = {int(r): j for j, r in enumerate(rows.tolist())}
+        self._mvel = np.ones(len(self._gens))
+        t = t.copy()
+        for k in self._md_rows:
+            j = where.get(k)
+            if j is None:
+                continue
+            clock = self._gens[k].clock
+            assert clock is not None
+            ref, m = int(clock.reference), clock.master  # 0 actual, 1 command
+            t[j] = clock.advance(float(positions[ref][m])) - self._t_offset[k]
+            self._mvel[k] = velocities[ref][m]
+        return t
 
     # -- queries ------------------------------------------------------------------
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
