@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from interpreter.motion.enums import EventKind
+from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
 
 
 @dataclass(slots=True)
@@ -37,6 +38,35 @@ class WatchSet:
 
     def disarm(self, axis: int) -> Watch | None:
         return self.armed.pop(axis, None)
+
+    # -- as a process set of the group (decision 0104): no motion, it watches the result
+    def begin_update(self) -> None:
+        pass
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        return EMPTY
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        self.check(actual, events)
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return np.zeros(n), np.zeros(n)
+
+    def edges(self) -> list[tuple[int, int]]:
+        return []
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        pass  # a watch compares actual positions as they are (after MRP too)
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        return {}
 
     def check(self, actual: np.ndarray, ev: list[tuple[int, EventKind, int]]) -> None:
         """Fire (COMPLETE) and disarm every watch whose position was passed this update."""

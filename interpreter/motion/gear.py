@@ -17,24 +17,11 @@ matches speed, not position).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from interpreter.motion.enums import MasterReference
-
-
-@dataclass(frozen=True, slots=True)
-class GearStep:
-    """Per-gear results of one update: slave axis, position change, velocity, acceleration."""
-
-    axis: np.ndarray
-    dpos: np.ndarray
-    vel: np.ndarray
-    acc: np.ndarray
-
-
-_EMPTY = GearStep(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
+from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
 
 
 class GearSet:
@@ -107,6 +94,20 @@ class GearSet:
         """(slave, master) pairs for the masters-before-slaves ordering."""
         return list(zip(self.slave.tolist(), self.master.tolist(), strict=True))
 
+    def begin_update(self) -> None:
+        pass
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        pass
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """GearingStatus (geared) and GearingLockStatus (clutch done)."""
+        gear = np.zeros(n, dtype=bool)
+        gear[self.slave] = True
+        lock = np.zeros(n, dtype=bool)
+        lock[self.slave[self.locked]] = True
+        return {"GearingStatus": gear, "GearingLockStatus": lock}
+
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         return np.bincount(self.slave, self.v, n), np.bincount(self.slave, self.a, n)
 
@@ -114,19 +115,20 @@ class GearSet:
     def step(
         self,
         cup: float,
-        level_sel: tuple[np.ndarray, int] | None,
-        positions: tuple[np.ndarray, np.ndarray],
-        velocities: tuple[np.ndarray, np.ndarray],
-    ) -> GearStep:
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events | None = None,  # gears report no events from a step
+    ) -> Contribution:
         """Advance the gears (all, or those whose slave has the given level) one update."""
         if not len(self):
-            return _EMPTY
+            return EMPTY
         if level_sel is None:
             rows = np.arange(len(self))
         else:
             rows = np.flatnonzero(level_sel[0][self.slave] == level_sel[1])
             if not len(rows):
-                return _EMPTY
+                return EMPTY
         master, ref = self.master[rows], self.ref[rows]
         m = np.where(ref == 0, positions[0][master], positions[1][master])
         mv = np.where(ref == 0, velocities[0][master], velocities[1][master])
@@ -145,4 +147,4 @@ class GearSet:
         self.v[rows] = vel
         self.a[rows] = acc
         self.locked[rows] = locked | reach
-        return GearStep(self.slave[rows], dp, vel, acc)
+        return Contribution(self.slave[rows], dp, vel, acc)

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from interpreter.motion.clock import MasterClock
 from interpreter.motion.enums import EventKind, GeneratorKind, LockDirection
+from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
 from interpreter.motion.profiles import Limits, MoveProfile
 
 
@@ -85,20 +87,6 @@ _KIND_STATUS = {
 }
 
 
-@dataclass(slots=True)
-class Contribution:
-    """What a set of motion processes adds to its axes in one update (one row per process
-    and axis): position change, command velocity and acceleration."""
-
-    axis: np.ndarray
-    dpos: np.ndarray
-    vel: np.ndarray
-    acc: np.ndarray
-
-
-EMPTY = Contribution(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
-
-
 class ProfileSet:
     """The moves, jogs and stops of a group, stepped together with numpy.
 
@@ -110,7 +98,8 @@ class ProfileSet:
     a rebuild; `view()` only reads them.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, on_end: Callable[[ProfileGen, EventKind, Events], None]) -> None:
+        self._on_end = on_end  # the group ends a generator (MGS bookkeeping, levels)
         self._gens: list[ProfileGen] = []
         self._dirty = True  # rows must be rebuilt from the objects
         self._fresh = True  # the objects hold the latest state
@@ -180,10 +169,10 @@ class ProfileSet:
     def step(
         self,
         cup: float,
-        level_sel: tuple[np.ndarray, int] | None,
-        positions: tuple[np.ndarray, np.ndarray],
-        velocities: tuple[np.ndarray, np.ndarray],
-        events: list[tuple[int, EventKind, int]],
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
     ) -> Contribution:
         """Advance the generators (all, or those whose axis has the given level) one update.
         Generators that reached their end are left in `done` (the group ends them)."""
@@ -246,7 +235,24 @@ class ProfileSet:
                     events.append((g.handle, _PHASES[int(phase[j])], g.axis))
                 if finished[j]:
                     done.append(g)
-        return Contribution(self._axis[sel], dp, vel, acc)
+        out = Contribution(self._axis[sel], dp, vel, acc)
+        for g in done:
+            self._on_end(g, EventKind.COMPLETE, events)
+        return out
+
+    def begin_update(self) -> None:
+        pass
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        pass
+
+    def edges(self) -> list[tuple[int, int]]:
+        return [(g.axis, g.clock.master) for g in self.view() if g.clock is not None]
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        for g in self.view():
+            if g.clock is not None:
+                g.clock.shift(axis, delta)
 
     def _master_times(
         self,

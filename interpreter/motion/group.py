@@ -40,6 +40,7 @@ from interpreter.motion.events import Watch, WatchSet
 from interpreter.motion.gear import GearSet
 from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import homing_error
+from interpreter.motion.process import ProcessSet
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCam, TimeCamSet
@@ -143,7 +144,7 @@ class MotionGroup:
         self._max_level = 0
         self._levels_dirty = False
         self.status: dict[str, np.ndarray] = {}
-        self._moves = ProfileSet()  # moves, jogs and stops
+        self._moves = ProfileSet(self._end_gen)  # moves, jogs and stops
         self._cams = TimeCamSet()
         self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
@@ -156,6 +157,8 @@ class MotionGroup:
         self._gears = GearSet()
         self._last_gear_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
         self._homing: dict[int, int] = {}  # axis -> handle of a passive homing that waits
+        # every kind of motion process, stepped in this order at each level (decision 0104)
+        self._sets: list[ProcessSet] = [self._moves, self._cams, self._gears, self.watch]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
 
     @property
@@ -782,13 +785,8 @@ class MotionGroup:
         self.command_position[axis] += delta
         self.actual_position[axis] += delta
         self.shift[axis] += delta
-        self._gears.shift_master(axis, delta)
-        clocks = [g.clock for g in self._moves.view() if g.clock is not None]
-        clocks += [c.clock for c in self._cams.cams if c.clock is not None]
-        for clock in clocks:
-            if clock.master == axis:
-                clock.start = None if clock.start is None else clock.start + delta
-                clock.prev = None if clock.prev is None else clock.prev + delta
+        for ps in self._sets:
+            ps.shift_master(axis, delta)
 
     def home(self, axis: int, mode: int, sequence: int, home_position: float) -> StartResult:
         """MAH with the axis's homing configuration (see homing.py for what is simulated).
@@ -1044,9 +1042,7 @@ class MotionGroup:
     def _compute_levels(self) -> None:
         """Masters before slaves: level(slave) = level(master) + 1 (cycles are capped)."""
         n = len(self.axes)
-        edges = [(g.axis, g.clock.master) for g in self._moves.view() if g.clock is not None]
-        edges += [(c.axis, c.clock.master) for c in self._cams.cams if c.clock is not None]
-        edges += self._gears.edges()
+        edges = [e for ps in self._sets for e in ps.edges()]
         level = np.zeros(n, dtype=np.intp)
         for _ in range(n):
             changed = False
@@ -1072,39 +1068,23 @@ class MotionGroup:
             self._compute_levels()
         n = len(self.axes)
         cup = self.cup
-        cams = self._cams
-        cams.begin_update()
+        sets = self._sets
+        for ps in sets:
+            ps.begin_update()
         prev_actual = self.actual_position.copy()
+        positions = (self.actual_position, self.command_position)
+        velocities = (self.actual_velocity, self.command_velocity)
+        single = self._max_level == 0
         for lvl in range(self._max_level + 1):
-            single = self._max_level == 0
-            ms = self._moves.step(
-                cup,
-                None if single else (self._level, lvl),
-                (self.actual_position, self.command_position),
-                (self.actual_velocity, self.command_velocity),
-                ev,
-            )
-            for g in self._moves.done:
-                self._end_gen(g, EventKind.COMPLETE, ev)
-            cs = cams.step(
-                cup,
-                None if single else (self._level, lvl),
-                (self.actual_position, self.command_position),
-                (self.actual_velocity, self.command_velocity),
-                ev,
-            )
-            gs = self._gears.step(
-                cup,
-                None if single else (self._level, lvl),
-                (self.actual_position, self.command_position),
-                (self.actual_velocity, self.command_velocity),
-            )
+            sel = None if single else (self._level, lvl)
+            parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
+            parts = [c for c in parts if len(c.axis)]
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
-            if len(ms.axis) or len(cs.axis) or len(gs.axis):
-                axes = np.concatenate((ms.axis, cs.axis, gs.axis))
-                dpos = np.bincount(axes, np.concatenate((ms.dpos, cs.dpos, gs.dpos)), n)
-                vel = np.bincount(axes, np.concatenate((ms.vel, cs.vel, gs.vel)), n)
-                acc = np.bincount(axes, np.concatenate((ms.acc, cs.acc, gs.acc)), n)
+            if parts:
+                axes = np.concatenate([c.axis for c in parts])
+                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
+                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
+                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]
@@ -1113,19 +1093,15 @@ class MotionGroup:
                 self.command_acceleration[idx] = 0.0
             servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
             self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
-        cams.end_update()
-        self.watch.check(self.actual_position, ev)
+        for ps in sets:
+            ps.end_update(self.actual_position, ev)
         post, self._post = self._post, []
         for f in post:
             f(ev)
-        if post:  # generators started at this update report their start velocity now
-            vel, acc = self._cams.velocity_sums(n)
-            gv, ga = self._gears.velocity_sums(n)
-            mv, ma = self._moves.velocity_sums(n)
-            vel += gv + mv
-            acc += ga + ma
-            self.command_velocity[:] = vel
-            self.command_acceleration[:] = acc
+        if post:  # processes started at this update report their start velocity now
+            sums = [ps.velocity_sums(n) for ps in sets]
+            self.command_velocity[:] = np.sum([v_ for v_, _ in sums], axis=0)
+            self.command_acceleration[:] = np.sum([a_ for _, a_ in sums], axis=0)
         self.updates += 1
         self._update_status()
         return [MotionEvent(h, k, a) for h, k, a in ev]
@@ -1137,26 +1113,12 @@ class MotionGroup:
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        st.update(self._moves.status(n))
-        tc = np.zeros(n, dtype=bool)
-        tc[self._cams.active_axes()] = True
-        st["TimeCamStatus"] = tc
-        tp = np.zeros(n, dtype=bool)
-        tp[list(self._cams.pending)] = True
-        st["TimeCamPendingStatus"] = tp
-        tl = np.zeros(n, dtype=bool)
-        tl[self._cams.locked_axes()] = True
-        st["TimeCamLockStatus"] = tl
+        for ps in self._sets:
+            st.update(ps.status(n))
         cm = np.zeros(n, dtype=bool)
         cm[[lk.slave for lk in self._links_active.values()]] = True
         cm[[lk.slave for lk in self._links_pending.values()]] = True
         st["CoordinatedMotionStatus"] = cm
-        gear = np.zeros(n, dtype=bool)
-        gear[self._gears.slave] = True
-        st["GearingStatus"] = gear
-        lock = np.zeros(n, dtype=bool)
-        lock[self._gears.slave[self._gears.locked]] = True
-        st["GearingLockStatus"] = lock
         homing = np.zeros(n, dtype=bool)
         homing[list(self._homing)] = True
         st["HomingStatus"] = homing

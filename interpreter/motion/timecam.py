@@ -10,6 +10,7 @@ import numpy as np
 from interpreter.motion.cam import CamProfile, ProfileBank
 from interpreter.motion.clock import MasterClock
 from interpreter.motion.enums import EventKind, ExecutionMode, LockDirection
+from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
 
 
 @dataclass(slots=True)
@@ -35,19 +36,6 @@ class TimeCam:
     @property
     def lock_direction(self) -> LockDirection:
         return LockDirection.NONE if self.clock is None else self.clock.lock_direction
-
-
-@dataclass(slots=True)
-class CamStep:
-    """Per-cam results of one update for the group's bookkeeping."""
-
-    axis: np.ndarray
-    dpos: np.ndarray
-    vel: np.ndarray
-    acc: np.ndarray
-
-
-_EMPTY = CamStep(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
 
 
 class TimeCamSet:
@@ -128,14 +116,14 @@ class TimeCamSet:
     def step(
         self,
         cup: float,
-        level_sel: tuple[np.ndarray, int] | None,
-        positions: tuple[np.ndarray, np.ndarray],
-        velocities: tuple[np.ndarray, np.ndarray],
-        events: list[tuple[int, EventKind, int]],
-    ) -> CamStep:
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
         """Advance the cams (all, or those whose axis has the given level) one update."""
         if not self.cams:
-            return _EMPTY
+            return EMPTY
         if self._dirty:
             self._rebuild()
         if level_sel is None:
@@ -143,7 +131,7 @@ class TimeCamSet:
         else:
             sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
             if len(sel) == 0:
-                return _EMPTY
+                return EMPTY
         in_sel = set(sel.tolist()) if level_sel is not None else None
         # a cam starts with count 0 at the update that applies it; then one more per update
         cnt = self._count[sel] + 1
@@ -194,7 +182,7 @@ class TimeCamSet:
                 dpos[j] += self._finish(
                     row, bool(handover[j]), events, vel, acc, int(j), float(mv[j])
                 )
-        return CamStep(axis, dpos, vel, acc)
+        return Contribution(axis, dpos, vel, acc)
 
     def _finish(
         self,
@@ -253,7 +241,7 @@ class TimeCamSet:
         self._finished: list[TimeCam] = []
         self._started: list[TimeCam] = []
 
-    def end_update(self) -> None:
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
         """Apply the removals and hand-overs collected during step()."""
         if self._finished or self._started:
             self._sync_out()
@@ -277,6 +265,25 @@ class TimeCamSet:
         if self._dirty:
             self._rebuild()
         return self._axis
+
+    def edges(self) -> list[tuple[int, int]]:
+        return [(c.axis, c.clock.master) for c in self.cams if c.clock is not None]
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        for c in self.cams:
+            if c.clock is not None:
+                c.clock.shift(axis, delta)
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """TimeCamStatus (active), TimeCamPendingStatus, TimeCamLockStatus (following a
+        master with a lock direction)."""
+        tc = np.zeros(n, dtype=bool)
+        tc[self.active_axes()] = True
+        tp = np.zeros(n, dtype=bool)
+        tp[list(self.pending)] = True
+        tl = np.zeros(n, dtype=bool)
+        tl[self.locked_axes()] = True
+        return {"TimeCamStatus": tc, "TimeCamPendingStatus": tp, "TimeCamLockStatus": tl}
 
     def locked_axes(self) -> list[int]:
         return [

@@ -1,0 +1,73 @@
+"""What the motion group schedules: sets of motion processes of one kind.
+
+A motion process is started by an instruction and identified by its handle; it may cover
+several axes (a gear: a slave and its master; a path: the axes of a coordinate system) and
+may keep outputs that are not axis attributes (an output cam's output word). Processes of
+one kind live together in a set that advances all of them per update with numpy, in its own
+module beside the group: moves/jogs/stops (generators.py), time cams (timecam.py), gears
+(gear.py), watch positions (events.py). MotionGroup keeps the axis state arrays and, per
+coarse update, steps every set level by level (masters before slaves, from `edges`), sums
+their contributions per axis, runs the servo model, then lets each set look at the final
+axis state (`end_update`). It has no branch on the kind of a set. Decision 0104.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from interpreter.motion.enums import EventKind
+
+Events = list[tuple[int, EventKind, int]]  # (handle, kind, axis) in order of occurrence
+LevelSel = tuple[np.ndarray, int] | None  # (level of each axis, level stepped) or all
+AxisState = tuple[np.ndarray, np.ndarray]  # (actual, command): index with MasterReference
+
+
+@dataclass(slots=True)
+class Contribution:
+    """What a set of processes adds to its axes in one update (one row per process and
+    axis; rows of one axis are summed): position change, command velocity, acceleration."""
+
+    axis: np.ndarray
+    dpos: np.ndarray
+    vel: np.ndarray
+    acc: np.ndarray
+
+
+EMPTY = Contribution(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
+
+
+class ProcessSet(Protocol):
+    """The interface MotionGroup schedules. Start calls stay in the kind's own API (the
+    group's start_* methods validate and queue them for the next update)."""
+
+    def begin_update(self) -> None:
+        """Before the first level of an update."""
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        """Advance the processes whose (driven) axis has the selected level one update."""
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        """After every level and the servo step: the final axis state of this update
+        (removals and hand-overs collected during step, events that watch positions)."""
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Per-axis sums of the processes' command velocity and acceleration."""
+
+    def edges(self) -> list[tuple[int, int]]:
+        """(driven axis, master axis) pairs: the master is stepped first."""
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        """The axis's position was redefined by delta (MRP, MAH): keep counting travel."""
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """AXIS status members (bool per axis) this kind owns, e.g. TimeCamStatus."""
