@@ -105,6 +105,10 @@ class TimeCamSet:
         self._span = np.array([p.span for p in profiles], dtype=f)[self._prof]
         self._p0 = np.array([p.p_start for p in profiles], dtype=f)[self._prof]
         self._net = np.array([p.net for p in profiles], dtype=f)[self._prof]
+        bank = self._bank
+        self._row_base = bank.base[self._prof]
+        self._row_first = bank.first_seg[self._prof]
+        self._row_last = bank.last_seg[self._prof]
         self._has_pending = np.array([c.axis in self.pending for c in cams], dtype=bool)
         self._dirty = False
 
@@ -126,26 +130,28 @@ class TimeCamSet:
             return EMPTY
         if self._dirty:
             self._rebuild()
+        sel: slice | np.ndarray
         if level_sel is None:
-            sel = self._all_rows
+            sel = slice(None)  # every row: slices, no copies
         else:
             sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
             if len(sel) == 0:
                 return EMPTY
-        in_sel = set(sel.tolist()) if level_sel is not None else None
         # a cam starts with count 0 at the update that applies it; then one more per update
-        cnt = self._count[sel] + 1
-        self._count[sel] = cnt
-        self._raw[sel] = cnt * cup
-        mvel = np.ones(len(self.cams))
-        for k in self._md_rows:
-            if in_sel is not None and k not in in_sel:
-                continue
-            c = self.cams[k]
-            assert c.clock is not None
-            ref, m = int(c.clock.reference), c.clock.master  # 0 actual, 1 command
-            self._raw[k] = c.clock.advance(float(positions[ref][m]))
-            mvel[k] = velocities[ref][m]
+        self._count[sel] += 1
+        self._raw[sel] = self._count[sel] * cup
+        mvel: np.ndarray | None = None
+        if self._md_rows:
+            in_sel = set(self._all_rows[sel].tolist())
+            mvel = np.ones(len(self.cams))
+            for k in self._md_rows:
+                if k not in in_sel:
+                    continue
+                c = self.cams[k]
+                assert c.clock is not None
+                ref, m = int(c.clock.reference), c.clock.master  # 0 actual, 1 command
+                self._raw[k] = c.clock.advance(float(positions[ref][m]))
+                mvel[k] = velocities[ref][m]
         ts = self._ts[sel]
         span = self._span[sel]
         x = (self._raw[sel] - self._offset[sel]) / ts
@@ -159,17 +165,23 @@ class TimeCamSet:
             self._offset[sel] += k_pass * span * ts
             self._passes[sel] += k_pass
             x = x - k_pass * span
-        local = np.clip(x, 0.0, span)
+        local = np.minimum(np.maximum(x, 0.0), span)
         assert self._bank is not None
-        p, v, a = self._bank.evaluate(self._prof[sel], local)
+        p, v, a = self._bank.evaluate_rows(
+            self._row_base[sel], self._row_first[sel], self._row_last[sel], local
+        )
         gain = self._gain[sel]
         passes = self._passes[sel]
         contrib = gain * (p - self._p0[sel] + passes * self._net[sel])
         held = (x < 0.0) & ~cont  # before the start of a Once cam (master backing up)
         contrib = np.where(complete, gain * (self._net[sel] * (passes + 1.0)), contrib)
-        mv = mvel[sel]
-        vel = np.where(complete | held, 0.0, gain * v / ts * mv)
-        acc = np.where(complete | held, 0.0, gain * a / (ts * ts) * mv * mv)
+        mv = np.ones(len(x)) if mvel is None else mvel[sel]
+        if mvel is not None:
+            v = v * mv
+            a = a * mv * mv
+        stopped = complete | held
+        vel = np.where(stopped, 0.0, gain * v / ts)
+        acc = np.where(stopped, 0.0, gain * a / (ts * ts))
         dpos = contrib - self._last[sel]
         self._last[sel] = contrib
         self._v[sel] = vel
@@ -177,8 +189,9 @@ class TimeCamSet:
         axis = self._axis[sel]
         if complete.any() or handover.any():
             dpos = dpos.copy()
+            rows = self._all_rows[sel]
             for j in np.flatnonzero(complete | handover):
-                row = int(sel[j])
+                row = int(rows[j])
                 dpos[j] += self._finish(
                     row, bool(handover[j]), events, vel, acc, int(j), float(mv[j])
                 )
