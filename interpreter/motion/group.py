@@ -43,7 +43,7 @@ from interpreter.motion.homing import homing_error
 from interpreter.motion.process import ProcessSet
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
-from interpreter.motion.timecam import TimeCam, TimeCamSet
+from interpreter.motion.timecam import TimeCamSet, start_time_cam
 from stdlib import catalog
 
 
@@ -139,7 +139,6 @@ class MotionGroup:
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
         self._alpha = np.zeros(0)
-        self._last_cam_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
         self._levels_dirty = False
@@ -149,8 +148,6 @@ class MotionGroup:
         self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._next_handle = 1
-        self._cam_claim: set[int] = set()  # axes with an active or queued immediate cam
-        self._claim_mode: dict[int, bool] = {}  # claimed axis -> its cam is master driven
         self._links_pending: dict[tuple[int, MotionType], MasterLink] = {}
         self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
         self._group_stops: dict[int, _GroupStop] = {}
@@ -195,7 +192,6 @@ class MotionGroup:
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
         self._alpha = lag_alpha(self.tau, self.cup)
-        self._last_cam_dir = np.append(self._last_cam_dir, np.int8(0))
         self._last_gear_dir = np.append(self._last_gear_dir, np.int8(0))
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
@@ -222,9 +218,22 @@ class MotionGroup:
 
     def reserve_handle(self) -> int:
         """A fresh handle for a request that starts no generator (e.g. a fault reset)."""
-        return self._handle()
+        return self.new_handle()
 
-    def _handle(self) -> int:
+    # -- services for the process modules (start calls of each kind) -------------------
+    def after_update(self, fn: Callable[[list[tuple[int, EventKind, int]]], None]) -> None:
+        """Apply a start request at the end of the next update (its own clock is 0 there)."""
+        self._post.append(fn)
+
+    def before_update(self, fn: Callable[[list[tuple[int, EventKind, int]]], None]) -> None:
+        """Apply a request at the start of the next update, before its motion step."""
+        self._pre.append(fn)
+
+    def levels_changed(self) -> None:
+        """A process that follows a master started or ended: recompute the levels."""
+        self._levels_dirty = True
+
+    def new_handle(self) -> int:
         h = self._next_handle
         self._next_handle += 1
         return h
@@ -238,21 +247,21 @@ class MotionGroup:
             self.servo_on[axis] = True
             # the loop closes at the current actual position: no jump
             self.command_position[axis] = self.actual_position[axis]
-        return StartResult(handle=self._handle())
+        return StartResult(handle=self.new_handle())
 
     def servo_off_axis(self, axis: int) -> StartResult:
         """MSF: open the loop; running motion on the axis ends at the next update."""
-        h = self._handle()
+        h = self.new_handle()
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
-        self._pre.append(lambda ev: self._kill_axis(axis, ev))
+        self.before_update(lambda ev: self._kill_axis(axis, ev))
         return StartResult(handle=h)
 
     def shutdown_axis(self, axis: int) -> StartResult:
         """MASD: end all motion of the axis at once, break its MDAC links and keep it in the
         shutdown state (motion is refused with error 7) until reset_shutdown."""
-        h = self._handle()
+        h = self.new_handle()
         self.shutdown[axis] = True
         if not self.virtual[axis]:
             self.servo_on[axis] = False
@@ -261,47 +270,47 @@ class MotionGroup:
             self._kill_axis(axis, ev)
             self._break_links(lambda lk: axis in (lk.slave, lk.master), ev)
 
-        self._pre.append(apply)
+        self.before_update(apply)
         return StartResult(handle=h)
 
     def reset_shutdown(self, axis: int) -> StartResult:
         """MASR: leave the shutdown state; the loop stays open (a drive axis needs MSO)."""
         self.shutdown[axis] = False
-        return StartResult(handle=self._handle())
+        return StartResult(handle=self.new_handle())
 
     # -- watch position ------------------------------------------------------------------
     def arm_watch(self, axis: int, position: float, forward: bool) -> StartResult:
         """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
-        h = self._handle()
+        h = self.new_handle()
         old = self.watch.arm(Watch(h, axis, position, forward, float(self.actual_position[axis])))
         if old is not None:
-            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+            self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
         return StartResult(handle=h)
 
     def disarm_watch(self, axis: int) -> StartResult:
         """MDW: disarm the axis's watch; the arming instruction ends without completing."""
         old = self.watch.disarm(axis)
         if old is not None:
-            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
-        return StartResult(handle=self._handle())
+            self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+        return StartResult(handle=self.new_handle())
 
     # -- registration ---------------------------------------------------------------------
     def arm_registration(self, axis: int, input_number: int) -> StartResult:
         """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
         an armed registration waits (IP) until MDR or a later MAR on the same input."""
-        h = self._handle()
+        h = self.new_handle()
         old = self.registration.get((axis, input_number))
         self.registration[(axis, input_number)] = h
         if old is not None:
-            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+            self.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
         return StartResult(handle=h)
 
     def disarm_registration(self, axis: int, input_number: int) -> StartResult:
         """MDR: disarm the input; the arming MAR ends without completing."""
         old = self.registration.pop((axis, input_number), None)
         if old is not None:
-            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
-        return StartResult(handle=self._handle())
+            self.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+        return StartResult(handle=self.new_handle())
 
     def _kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
         for g in [g for g in self._gens if g.axis == axis]:
@@ -310,8 +319,8 @@ class MotionGroup:
         for c in cams:
             ev.append((c.handle, EventKind.ENDED, axis))
         self._cams.remove(cams)
-        self._drop_pending(axis, ev)
-        self._cam_claim.discard(axis)
+        self._cams.drop_pending(axis, ev)
+        self._cams.claim.discard(axis)
         self._end_gears(axis, ev)
         self._end_homing(axis, ev)
         self.command_velocity[axis] = 0.0
@@ -346,13 +355,13 @@ class MotionGroup:
             self._effective_reference(lk.master, lk.reference) != eff for lk in existing
         ):  # the master reference of a moving slave cannot change
             return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
-        h = self._handle()
+        h = self.new_handle()
         key = (slave, mt)
         old = self._links_pending.get(key)
         link = MasterLink(h, slave, master, MotionType(motion_type), MasterReference(reference))
         self._links_pending[key] = link
         if old is not None:  # a later MDAC overrides a pending one
-            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
+            self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
         return StartResult(handle=h)
 
     def _effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
@@ -389,14 +398,14 @@ class MotionGroup:
                 return g.limits, g.clock is not None
         return None
 
-    def _find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
+    def find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
         for table in (self._links_pending, self._links_active):
             for key in ((slave, mt), (slave, MotionType.ALL)):
                 if key in table:
                     return table[key]
         return None
 
-    def _take_link(self, slave: int, mt: MotionType, ev: list) -> MasterLink | None:
+    def take_link(self, slave: int, mt: MotionType, ev: list) -> MasterLink | None:
         """Promote a pending master (if any) at a slave motion start and return the link."""
         for key in ((slave, mt), (slave, MotionType.ALL)):
             link = self._links_pending.pop(key, None)
@@ -406,7 +415,7 @@ class MotionGroup:
                     ev.append((old.handle, EventKind.ENDED, slave))
                 self._links_active[key] = link
                 return link
-        return self._find_link(slave, mt)
+        return self.find_link(slave, mt)
 
     def _break_links(self, pred: Callable[[MasterLink], bool], ev: list) -> None:
         for table in (self._links_pending, self._links_active):
@@ -414,13 +423,13 @@ class MotionGroup:
                 ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
                 del table[key]
 
-    def _master_clock(
+    def master_clock(
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
     ) -> MasterClock:
         ref = self._effective_reference(link.master, link.reference)
         return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
 
-    def _master_state(self, clock: MasterClock) -> tuple[float, float]:
+    def master_state(self, clock: MasterClock) -> tuple[float, float]:
         m = clock.master
         if clock.reference == MasterReference.ACTUAL:
             return float(self.actual_position[m]), float(self.actual_velocity[m])
@@ -455,7 +464,7 @@ class MotionGroup:
         )  # fmt: skip
         if err is not None:
             return err
-        h = self._handle()
+        h = self.new_handle()
         lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
@@ -482,7 +491,7 @@ class MotionGroup:
             gen.limits, gen.goal = use, dist
             self._add_gen(gen, ev)
 
-        self._post.append(apply)
+        self.after_update(apply)
         return StartResult(handle=h)
 
     def start_jog(
@@ -510,7 +519,7 @@ class MotionGroup:
         )  # fmt: skip
         if err is not None:
             return err
-        h = self._handle()
+        h = self.new_handle()
         lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
         sign = 1.0 if direction == 0 else -1.0
 
@@ -533,7 +542,7 @@ class MotionGroup:
             gen.limits, gen.direction = lim, sign
             self._add_gen(gen, ev)
 
-        self._post.append(apply)
+        self.after_update(apply)
         return StartResult(handle=h)
 
     def _check_dynamics(
@@ -582,7 +591,7 @@ class MotionGroup:
             return StartResult(error=MotionError.SHUTDOWN_STATE)
         if not self.servo_on[axis]:
             return StartResult(error=MotionError.SERVO_OFF_STATE)
-        if master_driven and self._find_link(axis, mt) is None:
+        if master_driven and self.find_link(axis, mt) is None:
             return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
         return None
 
@@ -614,17 +623,17 @@ class MotionGroup:
                 same_units = False
                 ev.append((c.handle, EventKind.ENDED, axis))
             self._cams.remove(cams)
-            self._cam_claim.discard(axis)
+            self._cams.claim.discard(axis)
             if len(self._gears.rows_on(axis)):
                 v_time += self._end_gears(axis, ev)
                 same_units = False
         clock, link_handle = None, 0
         v0 = v_time
         if master_driven:
-            link = self._take_link(axis, mt, ev)
+            link = self.take_link(axis, mt, ev)
             assert link is not None
-            clock = self._master_clock(link, lock_direction, lock_position)
-            pos, mvel = self._master_state(clock)
+            clock = self.master_clock(link, lock_direction, lock_position)
+            pos, mvel = self.master_state(clock)
             clock.advance(pos)
             link_handle = link.handle
             ev.append((link.handle, EventKind.ACTIVE, axis))
@@ -645,7 +654,7 @@ class MotionGroup:
         if gen.clock is None:
             gen.v, gen.a = v, a
         else:
-            _, mvel = self._master_state(gen.clock)
+            _, mvel = self.master_state(gen.clock)
             gen.v, gen.a = v * mvel, a * mvel * mvel
         self._gens.append(gen)
         self._levels_dirty = True
@@ -683,31 +692,31 @@ class MotionGroup:
             return bad_operand(4)
         if decel_jerk is not None and not decel_jerk > 0.0:
             return bad_operand(7)
-        h = self._handle()
-        self._post.append(
+        h = self.new_handle()
+        self.after_update(
             lambda ev: self._apply_stop(h, axis, StopType(stop_type), decel, decel_jerk, 0, ev)
         )
         if stop_type in (StopType.ALL, StopType.TIME_CAM):
-            self._cam_claim.discard(axis)
+            self._cams.claim.discard(axis)
         return StartResult(handle=h)
 
     def stop_group(self) -> StartResult:
         """MGS (programmed): stop all motion of every axis with its configured decel."""
-        h = self._handle()
+        h = self.new_handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             gs = _GroupStop(h)
             self._group_stops[h] = gs
             for axis in range(len(self.axes)):
-                sh = self._handle()
+                sh = self.new_handle()
                 gs.members.add(sh)
                 self._apply_stop(sh, axis, StopType.ALL, None, None, h, ev)
             if h in self._group_stops and not gs.members:
                 ev.append((h, EventKind.COMPLETE, -1))
                 del self._group_stops[h]
 
-        self._post.append(apply)
-        self._cam_claim.clear()
+        self.after_update(apply)
+        self._cams.claim.clear()
         return StartResult(handle=h)
 
     def _apply_stop(
@@ -735,7 +744,7 @@ class MotionGroup:
                 v0 += c.v
                 ev.append((c.handle, EventKind.ENDED, axis))
             self._cams.remove(cams)
-            self._drop_pending(axis, ev)
+            self._cams.drop_pending(axis, ev)
         if stop_type in (StopType.ALL, StopType.GEAR):
             v0 += self._end_gears(axis, ev)
         if stop_type in (StopType.ALL, StopType.HOME):
@@ -749,12 +758,6 @@ class MotionGroup:
         gen = ProfileGen(h, GeneratorKind.STOP, axis, plan_stop(v0, lim), owner=owner)
         self._add_gen(gen, ev)
 
-    def _drop_pending(self, axis: int, ev: list) -> None:
-        cam = self._cams.pending.pop(axis, None)
-        if cam is not None:
-            ev.append((cam.handle, EventKind.ENDED, axis))
-            self._cams.pending_changed()
-
     # -- position redefinition (MRP) and homing (MAH) ------------------------------------
     def redefine_position(
         self, axis: int, relative: bool, reference: int, position: float
@@ -765,7 +768,7 @@ class MotionGroup:
             return bad_operand(3)
         if not math.isfinite(position):
             return bad_operand(4)
-        h = self._handle()
+        h = self.new_handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             base = (
@@ -776,7 +779,7 @@ class MotionGroup:
             self._shift_position(axis, position if relative else position - float(base[axis]))
             ev.append((h, EventKind.COMPLETE, axis))
 
-        self._pre.append(apply)
+        self.before_update(apply)
         return StartResult(handle=h)
 
     def _shift_position(self, axis: int, delta: float) -> None:
@@ -805,7 +808,7 @@ class MotionGroup:
             return StartResult(error=err)
         if not math.isfinite(home_position):
             return StartResult(error=MotionError.ILLEGAL_HOMING_CONFIGURATION)
-        h = self._handle()
+        h = self.new_handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             self._end_homing(axis, ev)
@@ -819,7 +822,7 @@ class MotionGroup:
             self.status["AxisHomedStatus"][axis] = True
             ev.append((h, EventKind.COMPLETE, axis))
 
-        self._pre.append(apply)
+        self.before_update(apply)
         return StartResult(handle=h)
 
     def _end_homing(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
@@ -864,7 +867,7 @@ class MotionGroup:
         }[CamDirection(direction)]
         self._last_gear_dir[slave] = sign
         ref = self._effective_reference(master, MasterReference(reference))
-        h = self._handle()
+        h = self.new_handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             v0 = self._end_gears(slave, ev)
@@ -878,7 +881,7 @@ class MotionGroup:
             self._levels_dirty = True
             ev.append((h, EventKind.IN_PROCESS, slave))
 
-        self._post.append(apply)
+        self.after_update(apply)
         return StartResult(handle=h)
 
     def _end_gears(self, slave: int, ev: list[tuple[int, EventKind, int]]) -> float:
@@ -914,7 +917,7 @@ class MotionGroup:
         ):
             if value is not None and not ok(value):
                 return bad_operand(index)
-        h = self._handle()
+        h = self.new_handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             for g in [g for g in self._gens if g.axis == axis and g.kind == kind]:
@@ -937,7 +940,7 @@ class MotionGroup:
                     prof = plan_move(g.goal - g.last_p, lim, v0)
                 g.replan(prof, lim)
 
-        self._post.append(apply)
+        self.after_update(apply)
         return StartResult(handle=h)
 
     # -- time cams -----------------------------------------------------------------------
@@ -954,89 +957,12 @@ class MotionGroup:
         lock_direction: int = LockDirection.NONE,
         instruction_mode: int = InstructionMode.TIME_DRIVEN,
     ) -> StartResult:
-        """MATC; profile None means not calculated (ERR 32)."""
-        if direction not in (0, 1, 2, 3):
-            return bad_operand(2)
-        if profile is None:
-            return StartResult(error=MotionError.CAM_PROFILE_NOT_CALCULATED)
-        if not math.isfinite(distance_scaling):
-            return bad_operand(4)
-        if not (math.isfinite(time_scaling) and time_scaling > 0.0):
-            return bad_operand(5)
-        if execution_mode not in (0, 1):
-            return bad_operand(6)
-        if execution_schedule not in (0, 1):
-            return bad_operand(7)
-        if not math.isfinite(lock_position):
-            return bad_operand(8)
-        if lock_direction not in (0, 1, 2, 3, 4):
-            return bad_operand(9)
-        if instruction_mode not in (0, 1):
-            return bad_operand(10)
-        pending = execution_schedule == ExecutionSchedule.PENDING
-        master_driven = instruction_mode == InstructionMode.MASTER_DRIVEN
-        if pending and lock_direction in (
-            LockDirection.POSITION_FORWARD,
-            LockDirection.POSITION_REVERSE,
-        ):
-            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
-        if not master_driven and lock_direction != LockDirection.NONE and not pending:
-            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
-        if not pending and axis in self._cam_claim:
-            return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
-        if pending and axis in self._cam_claim and self._claim_mode.get(axis) != master_driven:
-            # a pending cam must be in the mode of the active one (MATC seed)
-            return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
-        if self.shutdown[axis]:
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        if not self.servo_on[axis]:
-            return StartResult(error=MotionError.SERVO_OFF_STATE)
-        if master_driven and not pending and self._find_link(axis, MotionType.TIME_CAM) is None:
-            return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
-        last = int(self._last_cam_dir[axis])
-        sign = {
-            CamDirection.SAME: 1,
-            CamDirection.OPPOSITE: -1,
-            CamDirection.REVERSE: -last if last else -1,
-            CamDirection.UNCHANGED: last if last else 1,
-        }[CamDirection(direction)]
-        self._last_cam_dir[axis] = sign
-        h = self._handle()
-        cam = TimeCam(
-            h, axis, profile, sign * distance_scaling, time_scaling, ExecutionMode(execution_mode)
-        )
-        if pending:
-
-            def apply_pending(ev: list[tuple[int, EventKind, int]]) -> None:
-                # a pending cam runs in the mode (and with the master) of the active cam
-                self._drop_pending(axis, ev)
-                self._cams.pending[axis] = cam
-                self._cams.pending_changed()
-
-            self._post.append(apply_pending)
-            return StartResult(handle=h)
-
-        self._cam_claim.add(axis)
-        self._claim_mode[axis] = master_driven
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            if master_driven:
-                link = self._take_link(axis, MotionType.TIME_CAM, ev)
-                assert link is not None
-                cam.clock = self._master_clock(link, LockDirection(lock_direction), lock_position)
-                cam.link = link.handle
-                pos, _ = self._master_state(cam.clock)
-                cam.raw = cam.clock.advance(pos)
-                cam.offset = cam.raw
-                ev.append((link.handle, EventKind.ACTIVE, axis))
-            p, v, _a = profile.evaluate(profile.start)
-            cam.v = cam.gain * float(v) / time_scaling if cam.clock is None else 0.0
-            self._cams.add(cam)
-            self._levels_dirty = True
-            ev.append((h, EventKind.IN_PROCESS, axis))
-
-        self._post.append(apply)
-        return StartResult(handle=h)
+        """MATC; profile None means not calculated (ERR 32). See timecam.start_time_cam."""
+        return start_time_cam(
+            self, self._cams, axis, profile, direction, distance_scaling, time_scaling,
+            execution_mode, execution_schedule, lock_position, lock_direction,
+            instruction_mode,
+        )  # fmt: skip
 
     # -- the update ------------------------------------------------------------------------
     def _compute_levels(self) -> None:
@@ -1126,5 +1052,5 @@ class MotionGroup:
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()
         # every queued request has been applied: the claim is exactly the running cams
-        self._cam_claim = set(self._cams.active_axes().tolist())
-        self._claim_mode = {c.axis: c.clock is not None for c in self._cams.cams}
+        self._cams.claim = set(self._cams.active_axes().tolist())
+        self._cams.claim_mode = {c.axis: c.clock is not None for c in self._cams.cams}

@@ -4,13 +4,26 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from interpreter.motion.cam import CamProfile, ProfileBank
 from interpreter.motion.clock import MasterClock
-from interpreter.motion.enums import EventKind, ExecutionMode, LockDirection
+from interpreter.motion.enums import (
+    CamDirection,
+    EventKind,
+    ExecutionMode,
+    ExecutionSchedule,
+    InstructionMode,
+    LockDirection,
+    MotionType,
+)
+from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+
+if TYPE_CHECKING:  # the group calls start_time_cam; only the annotation needs the class
+    from interpreter.motion.group import MotionGroup
 
 
 @dataclass(slots=True)
@@ -44,6 +57,9 @@ class TimeCamSet:
     def __init__(self) -> None:
         self.cams: list[TimeCam] = []
         self.pending: dict[int, TimeCam] = {}
+        self.claim: set[int] = set()  # axes with an active or queued immediate cam
+        self.claim_mode: dict[int, bool] = {}  # claimed axis -> its cam is master driven
+        self.last_dir: dict[int, int] = {}  # axis -> +1 same, -1 opposite (absent: none yet)
         self._dirty = True
         self._bank: ProfileBank | None = None
 
@@ -111,6 +127,13 @@ class TimeCamSet:
         self._row_last = bank.last_seg[self._prof]
         self._has_pending = np.array([c.axis in self.pending for c in cams], dtype=bool)
         self._dirty = False
+
+    def drop_pending(self, axis: int, ev: Events) -> None:
+        """A pending cam of the axis is dropped (replaced, stopped): it ends, never counted."""
+        cam = self.pending.pop(axis, None)
+        if cam is not None:
+            ev.append((cam.handle, EventKind.ENDED, axis))
+            self.pending_changed()
 
     def pending_changed(self) -> None:
         self._sync_out()
@@ -306,3 +329,105 @@ class TimeCamSet:
             and c.clock.lock_direction != LockDirection.NONE
             and c.clock.locked
         ]
+
+
+def start_time_cam(
+    group: MotionGroup,
+    cams: TimeCamSet,
+    axis: int,
+    profile: CamProfile | None,
+    direction: int = CamDirection.SAME,
+    distance_scaling: float = 1.0,
+    time_scaling: float = 1.0,
+    execution_mode: int = ExecutionMode.ONCE,
+    execution_schedule: int = ExecutionSchedule.IMMEDIATE,
+    lock_position: float = 0.0,
+    lock_direction: int = LockDirection.NONE,
+    instruction_mode: int = InstructionMode.TIME_DRIVEN,
+) -> StartResult:
+    """MATC on the group's axis; profile None means not calculated (ERR 32).
+
+    Validates at once (decision 0100: ERR/EXERR from the start call) and queues the
+    start for the end of the next update."""
+    if direction not in (0, 1, 2, 3):
+        return bad_operand(2)
+    if profile is None:
+        return StartResult(error=MotionError.CAM_PROFILE_NOT_CALCULATED)
+    if not math.isfinite(distance_scaling):
+        return bad_operand(4)
+    if not (math.isfinite(time_scaling) and time_scaling > 0.0):
+        return bad_operand(5)
+    if execution_mode not in (0, 1):
+        return bad_operand(6)
+    if execution_schedule not in (0, 1):
+        return bad_operand(7)
+    if not math.isfinite(lock_position):
+        return bad_operand(8)
+    if lock_direction not in (0, 1, 2, 3, 4):
+        return bad_operand(9)
+    if instruction_mode not in (0, 1):
+        return bad_operand(10)
+    pending = execution_schedule == ExecutionSchedule.PENDING
+    master_driven = instruction_mode == InstructionMode.MASTER_DRIVEN
+    if pending and lock_direction in (
+        LockDirection.POSITION_FORWARD,
+        LockDirection.POSITION_REVERSE,
+    ):
+        return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+    if not master_driven and lock_direction != LockDirection.NONE and not pending:
+        return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+    if not pending and axis in cams.claim:
+        return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
+    if pending and axis in cams.claim and cams.claim_mode.get(axis) != master_driven:
+        # a pending cam must be in the mode of the active one (MATC seed)
+        return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
+    if group.shutdown[axis]:
+        return StartResult(error=MotionError.SHUTDOWN_STATE)
+    if not group.servo_on[axis]:
+        return StartResult(error=MotionError.SERVO_OFF_STATE)
+    if master_driven and not pending and group.find_link(axis, MotionType.TIME_CAM) is None:
+        return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
+    last = cams.last_dir.get(axis, 0)
+    sign = {
+        CamDirection.SAME: 1,
+        CamDirection.OPPOSITE: -1,
+        CamDirection.REVERSE: -last if last else -1,
+        CamDirection.UNCHANGED: last if last else 1,
+    }[CamDirection(direction)]
+    cams.last_dir[axis] = sign
+    h = group.new_handle()
+    cam = TimeCam(
+        h, axis, profile, sign * distance_scaling, time_scaling, ExecutionMode(execution_mode)
+    )
+    if pending:
+
+        def apply_pending(ev: list[tuple[int, EventKind, int]]) -> None:
+            # a pending cam runs in the mode (and with the master) of the active cam
+            cams.drop_pending(axis, ev)
+            cams.pending[axis] = cam
+            cams.pending_changed()
+
+        group.after_update(apply_pending)
+        return StartResult(handle=h)
+
+    cams.claim.add(axis)
+    cams.claim_mode[axis] = master_driven
+
+    def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+        if master_driven:
+            link = group.take_link(axis, MotionType.TIME_CAM, ev)
+            assert link is not None
+            cam.clock = group.master_clock(link, LockDirection(lock_direction), lock_position)
+            cam.link = link.handle
+            pos, _ = group.master_state(cam.clock)
+            cam.raw = cam.clock.advance(pos)
+            cam.offset = cam.raw
+            ev.append((link.handle, EventKind.ACTIVE, axis))
+        p, v, _a = profile.evaluate(profile.start)
+        cam.v = cam.gain * float(v) / time_scaling if cam.clock is None else 0.0
+        cams.add(cam)
+        group.levels_changed()
+        ev.append((h, EventKind.IN_PROCESS, axis))
+
+    group.after_update(apply)
+    return StartResult(handle=h)
