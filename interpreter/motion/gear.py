@@ -17,11 +17,16 @@ matches speed, not position).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import MasterReference
+from interpreter.motion.enums import CamDirection, EventKind, MasterReference
+from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+
+if TYPE_CHECKING:  # the group calls start_gear; only the annotation needs the class
+    from interpreter.motion.group import MotionGroup
 
 
 class GearSet:
@@ -38,6 +43,7 @@ class GearSet:
         self.v = np.zeros(0)  # the gear's own contribution to the slave velocity
         self.a = np.zeros(0)
         self.locked = np.zeros(0, dtype=bool)
+        self.last_dir: dict[int, int] = {}  # slave -> +1 same, -1 opposite (absent: none yet)
 
     def __len__(self) -> int:
         return len(self.handle)
@@ -71,6 +77,14 @@ class GearSet:
         self.v = np.append(self.v, v)
         self.a = np.append(self.a, 0.0)
         self.locked = np.append(self.locked, locked)
+
+    def end_on(self, slave: int, ev: Events) -> tuple[float, bool]:
+        """End the gearing of a slave: (the velocity it contributed, for hand-overs; whether
+        a gear ended)."""
+        ended = self.remove(self.rows_on(slave))
+        for h, _, _ in ended:
+            ev.append((h, EventKind.ENDED, slave))
+        return sum((v for _, _, v in ended), 0.0), bool(ended)
 
     def rows_on(self, slave: int) -> np.ndarray:
         return np.flatnonzero(self.slave == slave)
@@ -148,3 +162,56 @@ class GearSet:
         self.a[rows] = acc
         self.locked[rows] = locked | reach
         return Contribution(self.slave[rows], dp, vel, acc)
+
+
+def start_gear(
+    group: MotionGroup,
+    gears: GearSet,
+    slave: int,
+    master: int,
+    direction: int,
+    ratio: float,
+    reference: int = MasterReference.COMMAND,
+    clutch_accel: float = math.inf,
+) -> StartResult:
+    """MAG: from the next update the slave adds ratio x the master's travel; a gear
+    already on the slave is replaced, its velocity carried into the clutch ramp.
+    `ratio` is unsigned by direction (Same +1, Opposite -1, Reverse / Unchanged relative
+    to the slave's present gearing direction); clutch_accel inf: lock at once."""
+    if slave == master:
+        return StartResult(error=MotionError.MASTER_AXIS_CONFLICT)
+    if direction not in (0, 1, 2, 3):
+        return bad_operand(3)
+    if not math.isfinite(ratio):
+        return bad_operand(4)
+    if reference not in MasterReference.__members__.values():
+        return bad_operand(7)
+    if not clutch_accel > 0.0:
+        return bad_operand(10)
+    if group.shutdown[slave]:
+        return StartResult(error=MotionError.SHUTDOWN_STATE)
+    if not group.servo_on[slave]:
+        return StartResult(error=MotionError.SERVO_OFF_STATE)
+    last = gears.last_dir.get(slave, 0)
+    sign = {
+        CamDirection.SAME: 1,
+        CamDirection.OPPOSITE: -1,
+        CamDirection.REVERSE: -last if last else -1,
+        CamDirection.UNCHANGED: last if last else 1,
+    }[CamDirection(direction)]
+    gears.last_dir[slave] = sign
+    ref = group.effective_reference(master, MasterReference(reference))
+    h = group.new_handle()
+
+    def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+        v0 = gears.end_on(slave, ev)[0]
+        if ref == MasterReference.ACTUAL:
+            mpos, mvel = group.actual_position[master], group.actual_velocity[master]
+        else:
+            mpos, mvel = group.command_position[master], group.command_velocity[master]
+        gears.add(h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0)
+        group.levels_changed()
+        ev.append((h, EventKind.IN_PROCESS, slave))
+
+    group.after_update(apply)
+    return StartResult(handle=h)

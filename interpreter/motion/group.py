@@ -37,7 +37,7 @@ from interpreter.motion.enums import (
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.events import Watch, WatchSet
-from interpreter.motion.gear import GearSet
+from interpreter.motion.gear import GearSet, start_gear
 from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import homing_error
 from interpreter.motion.process import ProcessSet
@@ -152,7 +152,6 @@ class MotionGroup:
         self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
         self._group_stops: dict[int, _GroupStop] = {}
         self._gears = GearSet()
-        self._last_gear_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
         self._homing: dict[int, int] = {}  # axis -> handle of a passive homing that waits
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [self._moves, self._cams, self._gears, self.watch]
@@ -192,7 +191,6 @@ class MotionGroup:
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
         self._alpha = lag_alpha(self.tau, self.cup)
-        self._last_gear_dir = np.append(self._last_gear_dir, np.int8(0))
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
         for name_ in STATUS_BITS:
@@ -350,9 +348,9 @@ class MotionGroup:
         # All and a specific motion type cannot be assigned to one slave at the same time
         if any((lk.motion_type == MotionType.ALL) != (mt == MotionType.ALL) for lk in existing):
             return StartResult(error=MotionError.MDSC_ALL_CONFLICT)
-        eff = self._effective_reference(master, MasterReference(reference))
+        eff = self.effective_reference(master, MasterReference(reference))
         if self.axis_busy(slave) and any(
-            self._effective_reference(lk.master, lk.reference) != eff for lk in existing
+            self.effective_reference(lk.master, lk.reference) != eff for lk in existing
         ):  # the master reference of a moving slave cannot change
             return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
         h = self.new_handle()
@@ -364,7 +362,7 @@ class MotionGroup:
             self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
         return StartResult(handle=h)
 
-    def _effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
+    def effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
         """A virtual master has no actual position of its own: it is always followed by command."""
         return MasterReference.COMMAND if self.virtual[master] else reference
 
@@ -426,7 +424,7 @@ class MotionGroup:
     def master_clock(
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
     ) -> MasterClock:
-        ref = self._effective_reference(link.master, link.reference)
+        ref = self.effective_reference(link.master, link.reference)
         return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
 
     def master_state(self, clock: MasterClock) -> tuple[float, float]:
@@ -840,56 +838,15 @@ class MotionGroup:
         reference: int = MasterReference.COMMAND,
         clutch_accel: float = math.inf,
     ) -> StartResult:
-        """MAG: from the next update the slave adds ratio x the master's travel; a gear
-        already on the slave is replaced, its velocity carried into the clutch ramp.
-        `ratio` is unsigned by direction (Same +1, Opposite -1, Reverse / Unchanged relative
-        to the slave's present gearing direction); clutch_accel inf: lock at once."""
-        if slave == master:
-            return StartResult(error=MotionError.MASTER_AXIS_CONFLICT)
-        if direction not in (0, 1, 2, 3):
-            return bad_operand(3)
-        if not math.isfinite(ratio):
-            return bad_operand(4)
-        if reference not in MasterReference.__members__.values():
-            return bad_operand(7)
-        if not clutch_accel > 0.0:
-            return bad_operand(10)
-        if self.shutdown[slave]:
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        if not self.servo_on[slave]:
-            return StartResult(error=MotionError.SERVO_OFF_STATE)
-        last = int(self._last_gear_dir[slave])
-        sign = {
-            CamDirection.SAME: 1,
-            CamDirection.OPPOSITE: -1,
-            CamDirection.REVERSE: -last if last else -1,
-            CamDirection.UNCHANGED: last if last else 1,
-        }[CamDirection(direction)]
-        self._last_gear_dir[slave] = sign
-        ref = self._effective_reference(master, MasterReference(reference))
-        h = self.new_handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            v0 = self._end_gears(slave, ev)
-            if ref == MasterReference.ACTUAL:
-                mpos, mvel = self.actual_position[master], self.actual_velocity[master]
-            else:
-                mpos, mvel = self.command_position[master], self.command_velocity[master]
-            self._gears.add(
-                h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0
-            )
-            self._levels_dirty = True
-            ev.append((h, EventKind.IN_PROCESS, slave))
-
-        self.after_update(apply)
-        return StartResult(handle=h)
+        """MAG (see gear.start_gear)."""
+        return start_gear(
+            self, self._gears, slave, master, direction, ratio, reference, clutch_accel
+        )
 
     def _end_gears(self, slave: int, ev: list[tuple[int, EventKind, int]]) -> float:
         """End the gearing of a slave; returns the velocity it contributed (for hand-overs)."""
-        v0 = 0.0
-        for h, _, v in self._gears.remove(self._gears.rows_on(slave)):
-            v0 += v
-            ev.append((h, EventKind.ENDED, slave))
+        v0, ended = self._gears.end_on(slave, ev)
+        if ended:
             self._levels_dirty = True
         return v0
 
