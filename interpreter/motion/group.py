@@ -24,7 +24,6 @@ from interpreter.motion.enums import (
     ExecutionMode,
     ExecutionSchedule,
     GeneratorKind,
-    HomeMode,
     InstructionMode,
     LockDirection,
     MasterReference,
@@ -39,7 +38,7 @@ from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.events import Watch, WatchSet
 from interpreter.motion.gear import GearSet, start_gear
 from interpreter.motion.generators import ProfileGen, ProfileSet
-from interpreter.motion.homing import homing_error
+from interpreter.motion.homing import HomingSet, home
 from interpreter.motion.process import ProcessSet
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
@@ -152,9 +151,15 @@ class MotionGroup:
         self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
         self._group_stops: dict[int, _GroupStop] = {}
         self._gears = GearSet()
-        self._homing: dict[int, int] = {}  # axis -> handle of a passive homing that waits
+        self._homing = HomingSet()
         # every kind of motion process, stepped in this order at each level (decision 0104)
-        self._sets: list[ProcessSet] = [self._moves, self._cams, self._gears, self.watch]
+        self._sets: list[ProcessSet] = [
+            self._moves,
+            self._cams,
+            self._gears,
+            self.watch,
+            self._homing,
+        ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
 
     @property
@@ -253,7 +258,7 @@ class MotionGroup:
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
-        self.before_update(lambda ev: self._kill_axis(axis, ev))
+        self.before_update(lambda ev: self.kill_axis(axis, ev))
         return StartResult(handle=h)
 
     def shutdown_axis(self, axis: int) -> StartResult:
@@ -265,7 +270,7 @@ class MotionGroup:
             self.servo_on[axis] = False
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            self._kill_axis(axis, ev)
+            self.kill_axis(axis, ev)
             self._break_links(lambda lk: axis in (lk.slave, lk.master), ev)
 
         self.before_update(apply)
@@ -310,7 +315,7 @@ class MotionGroup:
             self.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
         return StartResult(handle=self.new_handle())
 
-    def _kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
+    def kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
         for g in [g for g in self._gens if g.axis == axis]:
             self._end_gen(g, EventKind.ENDED, ev)
         cams = self._cams.on_axis(axis)
@@ -774,13 +779,13 @@ class MotionGroup:
                 if reference == MasterReference.ACTUAL
                 else self.command_position
             )
-            self._shift_position(axis, position if relative else position - float(base[axis]))
+            self.shift_position(axis, position if relative else position - float(base[axis]))
             ev.append((h, EventKind.COMPLETE, axis))
 
         self.before_update(apply)
         return StartResult(handle=h)
 
-    def _shift_position(self, axis: int, delta: float) -> None:
+    def shift_position(self, axis: int, delta: float) -> None:
         """Add delta to the axis's positions; whatever follows this axis as a master keeps
         counting travel, not positions, so its slaves do not see the jump."""
         self.command_position[axis] += delta
@@ -790,43 +795,11 @@ class MotionGroup:
             ps.shift_master(axis, delta)
 
     def home(self, axis: int, mode: int, sequence: int, home_position: float) -> StartResult:
-        """MAH with the axis's homing configuration (see homing.py for what is simulated).
-
-        Immediate homing completes at the next update: the actual position becomes
-        `home_position` (the command keeps the following error); Active mode first ends
-        every motion of the axis. Passive homing that waits for a marker or torque event
-        stays in process until a stop (Home or All), servo off or shutdown ends it.
-        """
-        if mode == HomeMode.ACTIVE and self.shutdown[axis]:  # active homing moves the axis
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        err, waits = homing_error(
-            bool(self.virtual[axis]), bool(self.servo_on[axis]), mode, sequence
-        )
-        if err != MotionError.OK:
-            return StartResult(error=err)
-        if not math.isfinite(home_position):
-            return StartResult(error=MotionError.ILLEGAL_HOMING_CONFIGURATION)
-        h = self.new_handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            self._end_homing(axis, ev)
-            ev.append((h, EventKind.IN_PROCESS, axis))
-            if waits:
-                self._homing[axis] = h
-                return
-            if mode == HomeMode.ACTIVE:
-                self._kill_axis(axis, ev)
-            self._shift_position(axis, home_position - float(self.actual_position[axis]))
-            self.status["AxisHomedStatus"][axis] = True
-            ev.append((h, EventKind.COMPLETE, axis))
-
-        self.before_update(apply)
-        return StartResult(handle=h)
+        """MAH with the axis's homing configuration (see homing.home)."""
+        return home(self, self._homing, axis, mode, sequence, home_position)
 
     def _end_homing(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
-        h = self._homing.pop(axis, None)
-        if h is not None:
-            ev.append((h, EventKind.ENDED, axis))
+        self._homing.end_on(axis, ev)
 
     # -- gearing (MAG) --------------------------------------------------------------------
     def start_gear(
@@ -1002,9 +975,6 @@ class MotionGroup:
         cm[[lk.slave for lk in self._links_active.values()]] = True
         cm[[lk.slave for lk in self._links_pending.values()]] = True
         st["CoordinatedMotionStatus"] = cm
-        homing = np.zeros(n, dtype=bool)
-        homing[list(self._homing)] = True
-        st["HomingStatus"] = homing
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()

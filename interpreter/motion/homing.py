@@ -15,8 +15,17 @@ only the Immediate sequence finds its home event. What happens otherwise (decisi
 
 from __future__ import annotations
 
-from interpreter.motion.enums import HomeMode, HomeSequence
-from interpreter.motion.errors import MotionError
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from interpreter.motion.enums import EventKind, HomeMode, HomeSequence
+from interpreter.motion.errors import MotionError, StartResult
+from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+
+if TYPE_CHECKING:  # the group calls home; only the annotation needs the class
+    from interpreter.motion.group import MotionGroup
 
 _SWITCH = (HomeSequence.SWITCH, HomeSequence.SWITCH_MARKER)
 
@@ -49,3 +58,92 @@ def homing_error(
             return MotionError.ILLEGAL_HOMING_CONFIGURATION, False
         return MotionError.OK, False
     return MotionError.OK, not immediate
+
+
+class HomingSet:
+    """Homing requests of a group as a process set: no motion of its own (immediate homing
+    shifts the positions at the start of an update; passive homing that waits commands
+    nothing), HomingStatus while one waits, AxisHomedStatus once an axis was homed."""
+
+    def __init__(self) -> None:
+        self.waiting: dict[int, int] = {}  # axis -> handle of a passive homing that waits
+        self.homed: set[int] = set()
+
+    def end_on(self, axis: int, ev: Events) -> None:
+        """A stop, servo off or shutdown ends a waiting homing (IP cleared, no PC)."""
+        h = self.waiting.pop(axis, None)
+        if h is not None:
+            ev.append((h, EventKind.ENDED, axis))
+
+    def begin_update(self) -> None:
+        pass
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        return EMPTY
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        pass
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return np.zeros(n), np.zeros(n)
+
+    def edges(self) -> list[tuple[int, int]]:
+        return []
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        pass
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        homing = np.zeros(n, dtype=bool)
+        homing[list(self.waiting)] = True
+        homed = np.zeros(n, dtype=bool)
+        homed[list(self.homed)] = True
+        return {"HomingStatus": homing, "AxisHomedStatus": homed}
+
+
+def home(
+    group: MotionGroup,
+    homing: HomingSet,
+    axis: int,
+    mode: int,
+    sequence: int,
+    home_position: float,
+) -> StartResult:
+    """MAH with the axis's homing configuration (see homing.py for what is simulated).
+
+    Immediate homing completes at the next update: the actual position becomes
+    `home_position` (the command keeps the following error); Active mode first ends
+    every motion of the axis. Passive homing that waits for a marker or torque event
+    stays in process until a stop (Home or All), servo off or shutdown ends it.
+    """
+    if mode == HomeMode.ACTIVE and group.shutdown[axis]:  # active homing moves the axis
+        return StartResult(error=MotionError.SHUTDOWN_STATE)
+    err, waits = homing_error(bool(group.virtual[axis]), bool(group.servo_on[axis]), mode, sequence)
+    if err != MotionError.OK:
+        return StartResult(error=err)
+    if not math.isfinite(home_position):
+        return StartResult(error=MotionError.ILLEGAL_HOMING_CONFIGURATION)
+    h = group.new_handle()
+
+    def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+        homing.end_on(axis, ev)
+        ev.append((h, EventKind.IN_PROCESS, axis))
+        if waits:
+            homing.waiting[axis] = h
+            return
+        if mode == HomeMode.ACTIVE:
+            group.kill_axis(axis, ev)
+        group.shift_position(axis, home_position - float(group.actual_position[axis]))
+        homing.homed.add(axis)
+        group.status["AxisHomedStatus"][axis] = True
+        ev.append((h, EventKind.COMPLETE, axis))
+
+    group.before_update(apply)
+    return StartResult(handle=h)
