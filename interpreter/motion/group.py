@@ -39,6 +39,7 @@ from interpreter.motion.events import Watch, WatchSet
 from interpreter.motion.gear import GearSet, start_gear
 from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import HomingSet, home
+from interpreter.motion.links import LinkTable, MasterLink, assign_master
 from interpreter.motion.process import ProcessSet
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
@@ -93,17 +94,6 @@ class AxisConfig:
 
 
 @dataclass(slots=True)
-class MasterLink:
-    """An MDAC assignment of a master to a slave for one motion type."""
-
-    handle: int
-    slave: int
-    master: int
-    motion_type: MotionType
-    reference: MasterReference
-
-
-@dataclass(slots=True)
 class _GroupStop:
     handle: int
     members: set[int] = field(default_factory=set)
@@ -147,8 +137,7 @@ class MotionGroup:
         self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._next_handle = 1
-        self._links_pending: dict[tuple[int, MotionType], MasterLink] = {}
-        self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
+        self._links = LinkTable()  # MDAC master assignments
         self._group_stops: dict[int, _GroupStop] = {}
         self._gears = GearSet()
         self._homing = HomingSet()
@@ -159,6 +148,7 @@ class MotionGroup:
             self._gears,
             self.watch,
             self._homing,
+            self._links,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
 
@@ -338,34 +328,8 @@ class MotionGroup:
         motion_type: int = MotionType.ALL,
         reference: int = MasterReference.COMMAND,
     ) -> StartResult:
-        """MDAC: a pending master for the slave's next master-driven motion of that type."""
-        if slave == master:
-            return bad_operand(1)
-        if motion_type not in MotionType.__members__.values():
-            return bad_operand(3)
-        if reference not in MasterReference.__members__.values():
-            return bad_operand(4)
-        mt = MotionType(motion_type)
-        existing = [
-            lk for t in (self._links_pending, self._links_active) for lk in t.values()
-            if lk.slave == slave
-        ]  # fmt: skip
-        # All and a specific motion type cannot be assigned to one slave at the same time
-        if any((lk.motion_type == MotionType.ALL) != (mt == MotionType.ALL) for lk in existing):
-            return StartResult(error=MotionError.MDSC_ALL_CONFLICT)
-        eff = self.effective_reference(master, MasterReference(reference))
-        if self.axis_busy(slave) and any(
-            self.effective_reference(lk.master, lk.reference) != eff for lk in existing
-        ):  # the master reference of a moving slave cannot change
-            return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
-        h = self.new_handle()
-        key = (slave, mt)
-        old = self._links_pending.get(key)
-        link = MasterLink(h, slave, master, MotionType(motion_type), MasterReference(reference))
-        self._links_pending[key] = link
-        if old is not None:  # a later MDAC overrides a pending one
-            self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
-        return StartResult(handle=h)
+        """MDAC (see links.assign_master)."""
+        return assign_master(self, self._links, slave, master, motion_type, reference)
 
     def effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
         """A virtual master has no actual position of its own: it is always followed by command."""
@@ -402,29 +366,14 @@ class MotionGroup:
         return None
 
     def find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
-        for table in (self._links_pending, self._links_active):
-            for key in ((slave, mt), (slave, MotionType.ALL)):
-                if key in table:
-                    return table[key]
-        return None
+        return self._links.find(slave, mt)
 
     def take_link(self, slave: int, mt: MotionType, ev: list) -> MasterLink | None:
         """Promote a pending master (if any) at a slave motion start and return the link."""
-        for key in ((slave, mt), (slave, MotionType.ALL)):
-            link = self._links_pending.pop(key, None)
-            if link is not None:
-                old = self._links_active.get(key)
-                if old is not None and old is not link:
-                    ev.append((old.handle, EventKind.ENDED, slave))
-                self._links_active[key] = link
-                return link
-        return self.find_link(slave, mt)
+        return self._links.take(slave, mt, ev)
 
     def _break_links(self, pred: Callable[[MasterLink], bool], ev: list) -> None:
-        for table in (self._links_pending, self._links_active):
-            for key in [k for k, lk in table.items() if pred(lk)]:
-                ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
-                del table[key]
+        self._links.break_where(pred, ev)
 
     def master_clock(
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
@@ -971,10 +920,6 @@ class MotionGroup:
         st["DecelStatus"] = v * a < -_VEL_EPS
         for ps in self._sets:
             st.update(ps.status(n))
-        cm = np.zeros(n, dtype=bool)
-        cm[[lk.slave for lk in self._links_active.values()]] = True
-        cm[[lk.slave for lk in self._links_pending.values()]] = True
-        st["CoordinatedMotionStatus"] = cm
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()
