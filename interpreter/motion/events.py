@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from interpreter.motion.enums import EventKind
-from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
 
 
 @dataclass(slots=True)
@@ -67,6 +67,15 @@ class WatchSet:
 
     def status(self, n: int) -> dict[str, np.ndarray]:
         return {}
+
+    def busy(self, axis: int) -> bool:
+        return False  # moves nothing
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        return 0.0, False  # a watch stays armed through stops (only MDW or a new MAW ends it)
 
     def check(self, actual: np.ndarray, ev: list[tuple[int, EventKind, int]]) -> None:
         """Fire (COMPLETE) and disarm every watch whose position was passed this update."""

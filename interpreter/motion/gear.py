@@ -21,9 +21,17 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import CamDirection, EventKind, MasterReference
+from interpreter.motion.enums import CamDirection, EventKind, MasterReference, StopType
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
-from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
 
 if TYPE_CHECKING:  # the group calls start_gear; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -85,6 +93,18 @@ class GearSet:
         for h, _, _ in ended:
             ev.append((h, EventKind.ENDED, slave))
         return sum((v for _, _, v in ended), 0.0), bool(ended)
+
+    def busy(self, axis: int) -> bool:
+        return bool(len(self.rows_on(axis)))
+
+    def links_in_use(self) -> set[int]:
+        return set()  # gears name their master themselves (MAG), not through MDAC
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """Stops (All, Gear), merges and kills end the gearing of the slave."""
+        if reason not in (Ending.KILL, Ending.MERGE_ALL, StopType.ALL, StopType.GEAR):
+            return 0.0, False
+        return self.end_on(axis, events)
 
     def rows_on(self, slave: int) -> np.ndarray:
         return np.flatnonzero(self.slave == slave)

@@ -8,8 +8,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from interpreter.motion.clock import MasterClock
-from interpreter.motion.enums import EventKind, GeneratorKind, LockDirection
-from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+from interpreter.motion.enums import EventKind, GeneratorKind, LockDirection, StopType
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
 from interpreter.motion.profiles import Limits, MoveProfile
 
 
@@ -84,6 +92,17 @@ _KIND_STATUS = {
     GeneratorKind.MOVE: "MoveStatus",
     GeneratorKind.JOG: "JogStatus",
     GeneratorKind.STOP: "StoppingStatus",
+}
+
+
+_ALL_KINDS = frozenset({GeneratorKind.MOVE, GeneratorKind.JOG, GeneratorKind.STOP})
+# which generators a reason ends (MAS stop types not listed end none of them)
+_ENDS: dict[EndReason, frozenset[GeneratorKind]] = {
+    Ending.KILL: _ALL_KINDS,
+    Ending.MERGE_ALL: _ALL_KINDS,
+    StopType.ALL: _ALL_KINDS,
+    StopType.MOVE: frozenset({GeneratorKind.MOVE}),
+    StopType.JOG: frozenset({GeneratorKind.JOG}),
 }
 
 
@@ -248,6 +267,21 @@ class ProfileSet:
 
     def edges(self) -> list[tuple[int, int]]:
         return [(g.axis, g.clock.master) for g in self.view() if g.clock is not None]
+
+    def busy(self, axis: int) -> bool:
+        return any(g.axis == axis for g in self.view())
+
+    def links_in_use(self) -> set[int]:
+        return {g.link for g in self.view() if g.link}
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        kinds = _ENDS.get(reason, frozenset())
+        ending = [g for g in self.gens if g.axis == axis and g.kind in kinds]
+        v = 0.0
+        for g in ending:
+            v += g.v
+            self._on_end(g, EventKind.ENDED, events)
+        return v, bool(ending)
 
     def shift_master(self, axis: int, delta: float) -> None:
         for g in self.view():

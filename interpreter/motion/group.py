@@ -40,7 +40,7 @@ from interpreter.motion.gear import GearSet, start_gear
 from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import HomingSet, home
 from interpreter.motion.links import LinkTable, MasterLink, assign_master
-from interpreter.motion.process import ProcessSet
+from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -306,19 +306,25 @@ class MotionGroup:
         return StartResult(handle=self.new_handle())
 
     def kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
-        for g in [g for g in self._gens if g.axis == axis]:
-            self._end_gen(g, EventKind.ENDED, ev)
-        cams = self._cams.on_axis(axis)
-        for c in cams:
-            ev.append((c.handle, EventKind.ENDED, axis))
-        self._cams.remove(cams)
-        self._cams.drop_pending(axis, ev)
-        self._cams.claim.discard(axis)
-        self._end_gears(axis, ev)
-        self._end_homing(axis, ev)
+        """End every motion of the axis at once (servo off, shutdown, active homing)."""
+        self.end_axis(axis, Ending.KILL, ev)
         self.command_velocity[axis] = 0.0
         self.command_acceleration[axis] = 0.0
         self._levels_dirty = True
+
+    def end_axis(
+        self, axis: int, reason: EndReason, ev: list[tuple[int, EventKind, int]]
+    ) -> tuple[float, bool]:
+        """Every set ends what `reason` ends on the axis, in step order; returns the summed
+        command velocity of what ended (carried on by a stop or merge) and whether any did."""
+        v, any_ended = 0.0, False
+        for ps in self._sets:
+            dv, ended = ps.end_axis(axis, reason, ev)
+            v += dv
+            any_ended = any_ended or ended
+        if any_ended:
+            self._levels_dirty = True
+        return v, any_ended
 
     # -- MDAC ----------------------------------------------------------------------------
     def assign_master(
@@ -336,18 +342,17 @@ class MotionGroup:
         return MasterReference.COMMAND if self.virtual[master] else reference
 
     def axis_busy(self, axis: int) -> bool:
-        """Is any generator or time cam running on the axis (or is it still moving)?"""
+        """Is any process moving the axis (or is it still moving)?"""
         return (
-            any(g.axis == axis for g in self._moves.view())
-            or bool(self._cams.on_axis(axis))
-            or bool(len(self._gears.rows_on(axis)))
+            any(ps.busy(axis) for ps in self._sets)
             or abs(float(self.command_velocity[axis])) > _VEL_EPS
         )
 
     def links_in_use(self) -> set[int]:
-        """MDAC handles that drive a running master-driven generator or cam (MDAC .AC)."""
-        used = {g.link for g in self._moves.view() if g.link}
-        used.update(c.link for c in self._cams.cams if c.link)
+        """MDAC handles that drive a running master-driven process (MDAC .AC)."""
+        used: set[int] = set()
+        for ps in self._sets:
+            used |= ps.links_in_use()
         return used
 
     def generator_profile(self, handle: int) -> MoveProfile | None:
@@ -565,20 +570,9 @@ class MotionGroup:
         for g in replaced:
             self._end_gen(g, EventKind.ENDED, ev)
         if merge == MergeMode.ALL:
-            for g in [g for g in self._gens if g.axis == axis]:
-                v_time += g.v
-                same_units = False
-                self._end_gen(g, EventKind.ENDED, ev)
-            cams = self._cams.on_axis(axis)
-            for c in cams:
-                v_time += c.v
-                same_units = False
-                ev.append((c.handle, EventKind.ENDED, axis))
-            self._cams.remove(cams)
-            self._cams.claim.discard(axis)
-            if len(self._gears.rows_on(axis)):
-                v_time += self._end_gears(axis, ev)
-                same_units = False
+            v_other, other = self.end_axis(axis, Ending.MERGE_ALL, ev)
+            v_time += v_other
+            same_units = same_units and not other
         clock, link_handle = None, 0
         v0 = v_time
         if master_driven:
@@ -681,28 +675,7 @@ class MotionGroup:
         owner: int,
         ev: list[tuple[int, EventKind, int]],
     ) -> None:
-        kinds = {
-            StopType.ALL: {GeneratorKind.MOVE, GeneratorKind.JOG, GeneratorKind.STOP},
-            StopType.MOVE: {GeneratorKind.MOVE},
-            StopType.JOG: {GeneratorKind.JOG},
-        }.get(stop_type, set())
-        v0 = 0.0
-        for g in [g for g in self._gens if g.axis == axis and g.kind in kinds]:
-            v0 += g.v
-            self._end_gen(g, EventKind.ENDED, ev)
-        if stop_type in (StopType.ALL, StopType.TIME_CAM):
-            cams = self._cams.on_axis(axis)
-            for c in cams:
-                v0 += c.v
-                ev.append((c.handle, EventKind.ENDED, axis))
-            self._cams.remove(cams)
-            self._cams.drop_pending(axis, ev)
-        if stop_type in (StopType.ALL, StopType.GEAR):
-            v0 += self._end_gears(axis, ev)
-        if stop_type in (StopType.ALL, StopType.HOME):
-            self._end_homing(axis, ev)
-        if stop_type == StopType.ALL:
-            self._break_links(lambda lk: lk.slave == axis, ev)
+        v0, _ = self.end_axis(axis, stop_type, ev)
         cfg = self.axes[axis]
         dec = cfg.max_decel if decel is None else decel
         jerk = cfg.max_decel_jerk if decel_jerk is None else decel_jerk
@@ -747,9 +720,6 @@ class MotionGroup:
         """MAH with the axis's homing configuration (see homing.home)."""
         return home(self, self._homing, axis, mode, sequence, home_position)
 
-    def _end_homing(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
-        self._homing.end_on(axis, ev)
-
     # -- gearing (MAG) --------------------------------------------------------------------
     def start_gear(
         self,
@@ -764,13 +734,6 @@ class MotionGroup:
         return start_gear(
             self, self._gears, slave, master, direction, ratio, reference, clutch_accel
         )
-
-    def _end_gears(self, slave: int, ev: list[tuple[int, EventKind, int]]) -> float:
-        """End the gearing of a slave; returns the velocity it contributed (for hand-overs)."""
-        v0, ended = self._gears.end_on(slave, ev)
-        if ended:
-            self._levels_dirty = True
-        return v0
 
     # -- dynamics changes (MCD) ---------------------------------------------------------
     def change_dynamics(
@@ -923,6 +886,3 @@ class MotionGroup:
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()
-        # every queued request has been applied: the claim is exactly the running cams
-        self._cams.claim = set(self._cams.active_axes().tolist())
-        self._cams.claim_mode = {c.axis: c.clock is not None for c in self._cams.cams}

@@ -20,9 +20,17 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import EventKind, HomeMode, HomeSequence
+from interpreter.motion.enums import EventKind, HomeMode, HomeSequence, StopType
 from interpreter.motion.errors import MotionError, StartResult
-from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
 
 if TYPE_CHECKING:  # the group calls home; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -74,6 +82,20 @@ class HomingSet:
         h = self.waiting.pop(axis, None)
         if h is not None:
             ev.append((h, EventKind.ENDED, axis))
+
+    def busy(self, axis: int) -> bool:
+        return False  # moves nothing
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """Stops (All, Home) and kills end a waiting homing; a merge does not."""
+        if reason not in (Ending.KILL, StopType.ALL, StopType.HOME):
+            return 0.0, False
+        ended = axis in self.waiting
+        self.end_on(axis, events)
+        return 0.0, ended
 
     def begin_update(self) -> None:
         pass

@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import EventKind, MasterReference, MotionType
+from interpreter.motion.enums import EventKind, MasterReference, MotionType, StopType
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
-from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
 
 if TYPE_CHECKING:  # the group calls assign_master; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -61,6 +61,21 @@ class LinkTable:
             for key in [k for k, lk in table.items() if pred(lk)]:
                 ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
                 del table[key]
+
+    def busy(self, axis: int) -> bool:
+        return False  # moves nothing
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """MAS All breaks the slave's links (MGS too, through its stops). Shutdown breaks
+        the links of both ends itself (break_where)."""
+        if reason != StopType.ALL:
+            return 0.0, False
+        before = len(self.pending) + len(self.active)
+        self.break_where(lambda lk: lk.slave == axis, events)
+        return 0.0, len(self.pending) + len(self.active) != before
 
     # -- as a process set of the group -------------------------------------------------
     def begin_update(self) -> None:

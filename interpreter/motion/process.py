@@ -14,15 +14,27 @@ axis state (`end_update`). It has no branch on the kind of a set. Decision 0104.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 from typing import Protocol
 
 import numpy as np
 
-from interpreter.motion.enums import EventKind
+from interpreter.motion.enums import EventKind, StopType
 
 Events = list[tuple[int, EventKind, int]]  # (handle, kind, axis) in order of occurrence
 LevelSel = tuple[np.ndarray, int] | None  # (level of each axis, level stepped) or all
 AxisState = tuple[np.ndarray, np.ndarray]  # (actual, command): index with MasterReference
+
+
+class Ending(Enum):
+    """Why the motion of an axis ends other than by a stop (a StopType says which motion a
+    MAS ends; each set decides which of its processes a reason ends)."""
+
+    KILL = "kill"  # servo off, shutdown, active homing: everything at once, pending too
+    MERGE_ALL = "merge_all"  # a MAM/MAJ with Merge Enabled takes over the running motion
+
+
+EndReason = Ending | StopType
 
 
 @dataclass(slots=True)
@@ -71,3 +83,15 @@ class ProcessSet(Protocol):
 
     def status(self, n: int) -> dict[str, np.ndarray]:
         """AXIS status members (bool per axis) this kind owns, e.g. TimeCamStatus."""
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """End the processes on the axis that `reason` ends (ENDED events, no PC); returns
+        the command velocity they contributed (a stop or merge carries it on) and whether
+        any ended."""
+
+    def busy(self, axis: int) -> bool:
+        """Does a process of this set move the axis (MDAC: a busy slave keeps its master
+        reference)?"""
+
+    def links_in_use(self) -> set[int]:
+        """MDAC handles that drive a running process of this set (MDAC .AC)."""

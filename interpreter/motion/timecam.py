@@ -18,9 +18,18 @@ from interpreter.motion.enums import (
     InstructionMode,
     LockDirection,
     MotionType,
+    StopType,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
-from interpreter.motion.process import EMPTY, AxisState, Contribution, Events, LevelSel
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
 
 if TYPE_CHECKING:  # the group calls start_time_cam; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -127,6 +136,30 @@ class TimeCamSet:
         self._row_last = bank.last_seg[self._prof]
         self._has_pending = np.array([c.axis in self.pending for c in cams], dtype=bool)
         self._dirty = False
+
+    def busy(self, axis: int) -> bool:
+        return bool(self.on_axis(axis))
+
+    def links_in_use(self) -> set[int]:
+        return {c.link for c in self.cams if c.link}
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """Stops (All, Time Cam), merges and kills end the axis's cams; stops and kills also
+        drop its pending cam; merges and kills free the axis for an immediate cam at once
+        (a stop frees it when it executes)."""
+        if reason not in (Ending.KILL, Ending.MERGE_ALL, StopType.ALL, StopType.TIME_CAM):
+            return 0.0, False
+        cams = self.on_axis(axis)
+        v = 0.0
+        for c in cams:
+            v += c.v
+            events.append((c.handle, EventKind.ENDED, axis))
+        self.remove(cams)
+        if reason != Ending.MERGE_ALL:
+            self.drop_pending(axis, events)
+        if reason in (Ending.KILL, Ending.MERGE_ALL):
+            self.claim.discard(axis)
+        return v, bool(cams)
 
     def drop_pending(self, axis: int, ev: Events) -> None:
         """A pending cam of the axis is dropped (replaced, stopped): it ends, never counted."""
@@ -313,6 +346,10 @@ class TimeCamSet:
     def status(self, n: int) -> dict[str, np.ndarray]:
         """TimeCamStatus (active), TimeCamPendingStatus, TimeCamLockStatus (following a
         master with a lock direction)."""
+        # asked at the end of an update, when every queued request has been applied: the
+        # claim on an axis is exactly its running cam
+        self.claim = set(self.active_axes().tolist())
+        self.claim_mode = {c.axis: c.clock is not None for c in self.cams}
         tc = np.zeros(n, dtype=bool)
         tc[self.active_axes()] = True
         tp = np.zeros(n, dtype=bool)
