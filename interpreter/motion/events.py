@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from interpreter.motion.enums import EventKind
+from interpreter.motion.enums import EventKind, StopType
 from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
 
 
@@ -67,6 +67,9 @@ class WatchSet:
 
     def status(self, n: int) -> dict[str, np.ndarray]:
         return {}
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
 
     def busy(self, axis: int) -> bool:
         return False  # moves nothing

@@ -94,6 +94,9 @@ class GearSet:
             ev.append((h, EventKind.ENDED, slave))
         return sum((v for _, _, v in ended), 0.0), bool(ended)
 
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
     def busy(self, axis: int) -> bool:
         return bool(len(self.rows_on(axis)))
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -95,6 +95,14 @@ _KIND_STATUS = {
 }
 
 
+@dataclass(slots=True)
+class GroupStop:
+    """An MGS: complete when the stops it started on every axis have all completed."""
+
+    handle: int
+    members: set[int] = field(default_factory=set)
+
+
 _ALL_KINDS = frozenset({GeneratorKind.MOVE, GeneratorKind.JOG, GeneratorKind.STOP})
 # which generators a reason ends (MAS stop types not listed end none of them)
 _ENDS: dict[EndReason, frozenset[GeneratorKind]] = {
@@ -123,6 +131,7 @@ class ProfileSet:
         self._dirty = True  # rows must be rebuilt from the objects
         self._fresh = True  # the objects hold the latest state
         self.done: list[ProfileGen] = []  # reached their end in the latest step
+        self.group_stops: dict[int, GroupStop] = {}  # MGS handle -> its stops
 
     @property
     def gens(self) -> list[ProfileGen]:
@@ -267,6 +276,9 @@ class ProfileSet:
 
     def edges(self) -> list[tuple[int, int]]:
         return [(g.axis, g.clock.master) for g in self.view() if g.clock is not None]
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
 
     def busy(self, axis: int) -> bool:
         return any(g.axis == axis for g in self.view())

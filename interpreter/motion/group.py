@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -23,15 +23,10 @@ from interpreter.motion.enums import (
     EventKind,
     ExecutionMode,
     ExecutionSchedule,
-    GeneratorKind,
     InstructionMode,
     LockDirection,
     MasterReference,
-    MergeMode,
-    MergeSpeed,
     MotionType,
-    MoveType,
-    ProfileShape,
     StopType,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
@@ -40,8 +35,17 @@ from interpreter.motion.gear import GearSet, start_gear
 from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import HomingSet, home
 from interpreter.motion.links import LinkTable, MasterLink, assign_master
+from interpreter.motion.moves import (
+    change_dynamics,
+    end_gen,
+    generator_profile,
+    running_limits,
+    start_jog,
+    start_move,
+    stop,
+    stop_group,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
-from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
 from stdlib import catalog
@@ -93,19 +97,6 @@ class AxisConfig:
     max_decel_jerk: float = math.inf
 
 
-@dataclass(slots=True)
-class _GroupStop:
-    handle: int
-    members: set[int] = field(default_factory=set)
-
-
-_MOTION_OF_KIND = {
-    GeneratorKind.MOVE: MotionType.MOVE,
-    GeneratorKind.JOG: MotionType.JOG,
-    GeneratorKind.TIME_CAM: MotionType.TIME_CAM,
-}
-
-
 class MotionGroup:
     """State of all axes of a motion group; update() advances them one coarse update."""
 
@@ -132,18 +123,18 @@ class MotionGroup:
         self._max_level = 0
         self._levels_dirty = False
         self.status: dict[str, np.ndarray] = {}
-        self._moves = ProfileSet(self._end_gen)  # moves, jogs and stops
+        # moves, jogs and stops; ending one goes through moves.end_gen (MGS bookkeeping)
+        self.moves = ProfileSet(lambda g, kind, ev: end_gen(self, g, kind, ev))
         self._cams = TimeCamSet()
         self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._next_handle = 1
         self._links = LinkTable()  # MDAC master assignments
-        self._group_stops: dict[int, _GroupStop] = {}
         self._gears = GearSet()
         self._homing = HomingSet()
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
-            self._moves,
+            self.moves,
             self._cams,
             self._gears,
             self.watch,
@@ -155,7 +146,21 @@ class MotionGroup:
     @property
     def _gens(self) -> list[ProfileGen]:
         """The move/jog/stop generators, for start calls that edit them (rows rebuilt)."""
-        return self._moves.gens
+        return self.moves.gens
+
+    # the start calls of each kind, bound as methods (decision 0104)
+    generator_profile = generator_profile
+    running_limits = running_limits
+    start_move = start_move
+    start_jog = start_jog
+    stop = stop
+    stop_group = stop_group
+    change_dynamics = change_dynamics
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""
+        for ps in self._sets:
+            ps.stop_requested(axis, stop_type)
 
     # -- configuration ---------------------------------------------------------------
     def add_axis(
@@ -355,21 +360,6 @@ class MotionGroup:
             used |= ps.links_in_use()
         return used
 
-    def generator_profile(self, handle: int) -> MoveProfile | None:
-        """The planned profile of a running move/jog/stop (for event distances and plots)."""
-        for g in self._gens:
-            if g.handle == handle:
-                return g.profile
-        return None
-
-    def running_limits(self, axis: int, kind: GeneratorKind) -> tuple[Limits, bool] | None:
-        """Limits of the latest running move/jog of the axis and whether it is master driven
-        (MCD: % of Time jerks and unit checks need what is in use)."""
-        for g in reversed(self._gens):
-            if g.axis == axis and g.kind == kind and g.limits is not None:
-                return g.limits, g.clock is not None
-        return None
-
     def find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
         return self._links.find(slave, mt)
 
@@ -391,297 +381,6 @@ class MotionGroup:
         if clock.reference == MasterReference.ACTUAL:
             return float(self.actual_position[m]), float(self.actual_velocity[m])
         return float(self.command_position[m]), float(self.command_velocity[m])
-
-    # -- moves and jogs ----------------------------------------------------------------
-    def start_move(
-        self,
-        axis: int,
-        move_type: int,
-        position: float,
-        speed: float,
-        accel: float,
-        decel: float,
-        profile: int = ProfileShape.TRAPEZOIDAL,
-        accel_jerk: float = math.inf,
-        decel_jerk: float = math.inf,
-        merge: int = MergeMode.DISABLED,
-        merge_speed: int = MergeSpeed.PROGRAMMED,
-        lock_position: float = 0.0,
-        lock_direction: int = LockDirection.NONE,
-        master_driven: bool = False,
-    ) -> StartResult:
-        """MAM: absolute or incremental move; EXERR indices follow the MAM faceplate."""
-        if move_type not in (0, 1):
-            return bad_operand(2)
-        if not math.isfinite(position):
-            return bad_operand(3)
-        err = self._check_dynamics(
-            speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
-            lock_direction, master_driven, axis, MotionType.MOVE, first=4, step=2,
-        )  # fmt: skip
-        if err is not None:
-            return err
-        h = self.new_handle()
-        lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.MOVE]
-            remaining = sum(g.goal - g.last_p for g in replaced)
-            v0, clock, link = self._merge_out(
-                axis,
-                replaced,
-                MergeMode(merge),
-                ev,
-                MotionType.MOVE,
-                master_driven,
-                LockDirection(lock_direction),
-                lock_position,
-            )
-            if move_type == MoveType.ABSOLUTE:
-                dist = position - float(self.command_position[axis])
-            else:  # an incremental move adds to the end point of the move it replaces
-                dist = position + remaining
-            use = lim
-            if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
-                use = Limits(abs(v0), lim.accel, lim.decel, lim.accel_jerk, lim.decel_jerk)
-            gen = ProfileGen(h, GeneratorKind.MOVE, axis, plan_move(dist, use, v0), clock, link)
-            gen.limits, gen.goal = use, dist
-            self._add_gen(gen, ev)
-
-        self.after_update(apply)
-        return StartResult(handle=h)
-
-    def start_jog(
-        self,
-        axis: int,
-        direction: int,
-        speed: float,
-        accel: float,
-        decel: float,
-        profile: int = ProfileShape.TRAPEZOIDAL,
-        accel_jerk: float = math.inf,
-        decel_jerk: float = math.inf,
-        merge: int = MergeMode.DISABLED,
-        merge_speed: int = MergeSpeed.PROGRAMMED,
-        lock_position: float = 0.0,
-        lock_direction: int = LockDirection.NONE,
-        master_driven: bool = False,
-    ) -> StartResult:
-        """MAJ: direction 0 forward, 1 reverse; runs until stopped or replaced."""
-        if direction not in (0, 1):
-            return bad_operand(2)
-        err = self._check_dynamics(
-            speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
-            lock_direction, master_driven, axis, MotionType.JOG, first=3, step=2,
-        )  # fmt: skip
-        if err is not None:
-            return err
-        h = self.new_handle()
-        lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
-        sign = 1.0 if direction == 0 else -1.0
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.JOG]
-            v0, clock, link = self._merge_out(
-                axis,
-                replaced,
-                MergeMode(merge),
-                ev,
-                MotionType.JOG,
-                master_driven,
-                LockDirection(lock_direction),
-                lock_position,
-            )
-            target = sign * speed
-            if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
-                target = sign * abs(v0)
-            gen = ProfileGen(h, GeneratorKind.JOG, axis, plan_jog(target, lim, v0), clock, link)
-            gen.limits, gen.direction = lim, sign
-            self._add_gen(gen, ev)
-
-        self.after_update(apply)
-        return StartResult(handle=h)
-
-    def _check_dynamics(
-        self,
-        speed: float,
-        accel: float,
-        decel: float,
-        profile: int,
-        accel_jerk: float,
-        decel_jerk: float,
-        merge: int,
-        merge_speed: int,
-        lock_direction: int,
-        master_driven: bool,
-        axis: int,
-        mt: MotionType,
-        first: int,
-        step: int,
-    ) -> StartResult | None:
-        # operand order on both faceplates: Speed, Units, Accel, Units, Decel, Units,
-        # Profile, AccelJerk, DecelJerk, JerkUnits, Merge, MergeSpeed, LockPos, LockDir
-        if not (math.isfinite(speed) and speed >= 0.0):
-            return bad_operand(first)
-        # +inf is "unlimited" (a velocity step), as time-based planning with zero ramp time
-        if not accel > 0.0:
-            return bad_operand(first + step)
-        if not decel > 0.0:
-            return bad_operand(first + 2 * step)
-        p = first + 3 * step
-        if profile not in (0, 1):
-            return bad_operand(p)
-        if profile == ProfileShape.S_CURVE:
-            if not accel_jerk > 0.0:
-                return bad_operand(p + 1)
-            if not decel_jerk > 0.0:
-                return bad_operand(p + 2)
-        if merge not in (0, 1, 2):
-            return bad_operand(p + 4)
-        if merge_speed not in (0, 1):
-            return bad_operand(p + 5)
-        if lock_direction not in (0, 1, 2, 3, 4):
-            return bad_operand(p + 7)
-        if not master_driven and lock_direction != LockDirection.NONE:
-            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
-        if self.shutdown[axis]:
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        if not self.servo_on[axis]:
-            return StartResult(error=MotionError.SERVO_OFF_STATE)
-        if master_driven and self.find_link(axis, mt) is None:
-            return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
-        return None
-
-    def _merge_out(
-        self,
-        axis: int,
-        replaced: list[ProfileGen],
-        merge: MergeMode,
-        ev: list,
-        mt: MotionType,
-        master_driven: bool,
-        lock_direction: LockDirection,
-        lock_position: float,
-    ) -> tuple[float, MasterClock | None, int]:
-        """End the replaced generators (all motion for Merge All); their velocity carries on."""
-        v_time = sum(g.v for g in replaced)
-        v_native = sum(g.v_native for g in replaced)
-        same_units = all((g.clock is not None) == master_driven for g in replaced)
-        for g in replaced:
-            self._end_gen(g, EventKind.ENDED, ev)
-        if merge == MergeMode.ALL:
-            v_other, other = self.end_axis(axis, Ending.MERGE_ALL, ev)
-            v_time += v_other
-            same_units = same_units and not other
-        clock, link_handle = None, 0
-        v0 = v_time
-        if master_driven:
-            link = self.take_link(axis, mt, ev)
-            assert link is not None
-            clock = self.master_clock(link, lock_direction, lock_position)
-            pos, mvel = self.master_state(clock)
-            clock.advance(pos)
-            link_handle = link.handle
-            ev.append((link.handle, EventKind.ACTIVE, axis))
-            if same_units and replaced:
-                v0 = v_native
-            else:
-                v0 = v_time / mvel if abs(mvel) > _VEL_EPS else 0.0
-        elif not same_units or not replaced:
-            v0 = v_time
-        return v0, clock, link_handle
-
-    def _add_gen(self, gen: ProfileGen, ev: list[tuple[int, EventKind, int]]) -> None:
-        """Start a generator at this update: own clock 0, contribution 0, velocity v0."""
-        gen.t = 0.0 if gen.clock is None else gen.clock.value
-        p, v, a = gen.profile.at(gen.t)
-        gen.last_p = p
-        gen.v_native = v
-        if gen.clock is None:
-            gen.v, gen.a = v, a
-        else:
-            _, mvel = self.master_state(gen.clock)
-            gen.v, gen.a = v * mvel, a * mvel * mvel
-        self._gens.append(gen)
-        self._levels_dirty = True
-        ev.append((gen.handle, EventKind.IN_PROCESS, gen.axis))
-        gen.phase = gen.current_phase()
-        ev.append((gen.handle, gen.phase, gen.axis))
-        if gen.finished:
-            self._end_gen(gen, EventKind.COMPLETE, ev)
-
-    def _end_gen(self, g: ProfileGen, kind: EventKind, ev: list) -> None:
-        if g in self._gens:
-            self._gens.remove(g)
-            self._levels_dirty = True
-        ev.append((g.handle, kind, g.axis))
-        if g.owner:
-            gs = self._group_stops.get(g.owner)
-            if gs is not None:
-                gs.members.discard(g.handle)
-                if not gs.members:
-                    ev.append((gs.handle, EventKind.COMPLETE, -1))
-                    del self._group_stops[g.owner]
-
-    # -- stops ---------------------------------------------------------------------------
-    def stop(
-        self,
-        axis: int,
-        stop_type: int = StopType.ALL,
-        decel: float | None = None,
-        decel_jerk: float | None = None,
-    ) -> StartResult:
-        """MAS: decelerate the selected motion to rest (None: the axis's configured limits)."""
-        if stop_type not in StopType.__members__.values():
-            return bad_operand(2)
-        if decel is not None and not decel > 0.0:
-            return bad_operand(4)
-        if decel_jerk is not None and not decel_jerk > 0.0:
-            return bad_operand(7)
-        h = self.new_handle()
-        self.after_update(
-            lambda ev: self._apply_stop(h, axis, StopType(stop_type), decel, decel_jerk, 0, ev)
-        )
-        if stop_type in (StopType.ALL, StopType.TIME_CAM):
-            self._cams.claim.discard(axis)
-        return StartResult(handle=h)
-
-    def stop_group(self) -> StartResult:
-        """MGS (programmed): stop all motion of every axis with its configured decel."""
-        h = self.new_handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            gs = _GroupStop(h)
-            self._group_stops[h] = gs
-            for axis in range(len(self.axes)):
-                sh = self.new_handle()
-                gs.members.add(sh)
-                self._apply_stop(sh, axis, StopType.ALL, None, None, h, ev)
-            if h in self._group_stops and not gs.members:
-                ev.append((h, EventKind.COMPLETE, -1))
-                del self._group_stops[h]
-
-        self.after_update(apply)
-        self._cams.claim.clear()
-        return StartResult(handle=h)
-
-    def _apply_stop(
-        self,
-        h: int,
-        axis: int,
-        stop_type: StopType,
-        decel: float | None,
-        decel_jerk: float | None,
-        owner: int,
-        ev: list[tuple[int, EventKind, int]],
-    ) -> None:
-        v0, _ = self.end_axis(axis, stop_type, ev)
-        cfg = self.axes[axis]
-        dec = cfg.max_decel if decel is None else decel
-        jerk = cfg.max_decel_jerk if decel_jerk is None else decel_jerk
-        lim = Limits(0.0, dec, dec, jerk, jerk)
-        gen = ProfileGen(h, GeneratorKind.STOP, axis, plan_stop(v0, lim), owner=owner)
-        self._add_gen(gen, ev)
 
     # -- position redefinition (MRP) and homing (MAH) ------------------------------------
     def redefine_position(
@@ -734,56 +433,6 @@ class MotionGroup:
         return start_gear(
             self, self._gears, slave, master, direction, ratio, reference, clutch_accel
         )
-
-    # -- dynamics changes (MCD) ---------------------------------------------------------
-    def change_dynamics(
-        self,
-        axis: int,
-        kind: GeneratorKind,
-        speed: float | None = None,
-        accel: float | None = None,
-        decel: float | None = None,
-        accel_jerk: float | None = None,
-        decel_jerk: float | None = None,
-    ) -> StartResult:
-        """MCD: the running move or jog of the axis is planned again at the next update from
-        its present velocity with the changed limits (None: unchanged); a move keeps its end
-        point. Jerks only matter for S-curve motion. Nothing running: no effect."""
-        first = 4  # faceplate index of Speed; rates follow every second operand
-        for value, index, ok in (
-            (speed, first, lambda x: math.isfinite(x) and x >= 0.0),
-            (accel, first + 2, lambda x: x > 0.0),
-            (decel, first + 4, lambda x: x > 0.0),
-            (accel_jerk, first + 6, lambda x: x > 0.0),
-            (decel_jerk, first + 8, lambda x: x > 0.0),
-        ):
-            if value is not None and not ok(value):
-                return bad_operand(index)
-        h = self.new_handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            for g in [g for g in self._gens if g.axis == axis and g.kind == kind]:
-                old = g.limits
-                if old is None:
-                    continue
-                s_curve = not (math.isinf(old.accel_jerk) and math.isinf(old.decel_jerk))
-                lim = replace(
-                    old,
-                    speed=old.speed if speed is None else speed,
-                    accel=old.accel if accel is None else accel,
-                    decel=old.decel if decel is None else decel,
-                    accel_jerk=old.accel_jerk if accel_jerk is None or not s_curve else accel_jerk,
-                    decel_jerk=old.decel_jerk if decel_jerk is None or not s_curve else decel_jerk,
-                )
-                v0 = g.v_native
-                if kind == GeneratorKind.JOG:
-                    prof = plan_jog(g.direction * lim.speed, lim, v0)
-                else:
-                    prof = plan_move(g.goal - g.last_p, lim, v0)
-                g.replan(prof, lim)
-
-        self.after_update(apply)
-        return StartResult(handle=h)
 
     # -- time cams -----------------------------------------------------------------------
     def start_time_cam(

@@ -83,6 +83,9 @@ class HomingSet:
         if h is not None:
             ev.append((h, EventKind.ENDED, axis))
 
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
     def busy(self, axis: int) -> bool:
         return False  # moves nothing
 

@@ -62,6 +62,9 @@ class LinkTable:
                 ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
                 del table[key]
 
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
     def busy(self, axis: int) -> bool:
         return False  # moves nothing
 

@@ -95,3 +95,7 @@ class ProcessSet(Protocol):
 
     def links_in_use(self) -> set[int]:
         """MDAC handles that drive a running process of this set (MDAC .AC)."""
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        """A MAS on the axis (MGS: None) was executed; it applies at the next update, but
+        what it frees at once (an axis claimed by a time cam) is freed now."""

@@ -137,6 +137,14 @@ class TimeCamSet:
         self._has_pending = np.array([c.axis in self.pending for c in cams], dtype=bool)
         self._dirty = False
 
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        """MAS All / Time Cam (or MGS: axis None) frees the axis for an immediate cam in
+        the same scan; the cam itself ends at the next update (end_axis)."""
+        if axis is None:
+            self.claim.clear()
+        elif stop_type in (StopType.ALL, StopType.TIME_CAM):
+            self.claim.discard(axis)
+
     def busy(self, axis: int) -> bool:
         return bool(self.on_axis(axis))
 
