@@ -10,11 +10,16 @@ the position when armed does not fire until it comes back and crosses it
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from interpreter.motion.enums import EventKind, StopType
+from interpreter.motion.errors import StartResult
 from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
+
+if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the class
+    from interpreter.motion.group import MotionGroup
 
 
 @dataclass(slots=True)
@@ -29,6 +34,8 @@ class Watch:
 @dataclass(slots=True)
 class WatchSet:
     armed: dict[int, Watch] = field(default_factory=dict)  # by axis
+    # MAR: (axis, input) -> handle; nothing is wired to the simulated inputs (decision 0065)
+    registration: dict[tuple[int, int], int] = field(default_factory=dict)
 
     def arm(self, watch: Watch) -> Watch | None:
         """Arm a watch; returns the watch it replaces on the same axis, if any."""
@@ -89,3 +96,45 @@ class WatchSet:
             if hit:
                 del self.armed[axis]
                 ev.append((w.handle, EventKind.COMPLETE, axis))
+
+
+# -- watch position ------------------------------------------------------------------
+
+
+def arm_watch(group: MotionGroup, axis: int, position: float, forward: bool) -> StartResult:
+    """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
+    h = group.new_handle()
+    old = group.watch.arm(Watch(h, axis, position, forward, float(group.actual_position[axis])))
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+    return StartResult(handle=h)
+
+
+def disarm_watch(group: MotionGroup, axis: int) -> StartResult:
+    """MDW: disarm the axis's watch; the arming instruction ends without completing."""
+    old = group.watch.disarm(axis)
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+    return StartResult(handle=group.new_handle())
+
+
+# -- registration ---------------------------------------------------------------------
+
+
+def arm_registration(group: MotionGroup, axis: int, input_number: int) -> StartResult:
+    """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
+    an armed registration waits (IP) until MDR or a later MAR on the same input."""
+    h = group.new_handle()
+    old = group.watch.registration.get((axis, input_number))
+    group.watch.registration[(axis, input_number)] = h
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+    return StartResult(handle=h)
+
+
+def disarm_registration(group: MotionGroup, axis: int, input_number: int) -> StartResult:
+    """MDR: disarm the input; the arming MAR ends without completing."""
+    old = group.watch.registration.pop((axis, input_number), None)
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+    return StartResult(handle=group.new_handle())

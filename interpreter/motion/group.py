@@ -30,7 +30,13 @@ from interpreter.motion.enums import (
     StopType,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
-from interpreter.motion.events import Watch, WatchSet
+from interpreter.motion.events import (
+    WatchSet,
+    arm_registration,
+    arm_watch,
+    disarm_registration,
+    disarm_watch,
+)
 from interpreter.motion.gear import GearSet, start_gear
 from interpreter.motion.generators import ProfileGen, ProfileSet
 from interpreter.motion.homing import HomingSet, home
@@ -115,7 +121,6 @@ class MotionGroup:
         self.servo_on = np.zeros(0, dtype=bool)
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
         self.watch = WatchSet()  # MAW watch-position events
-        self.registration: dict[tuple[int, int], int] = {}  # (axis, input) -> MAR handle
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
         self._alpha = np.zeros(0)
@@ -155,6 +160,10 @@ class MotionGroup:
     start_jog = start_jog
     stop = stop
     stop_group = stop_group
+    arm_watch = arm_watch
+    disarm_watch = disarm_watch
+    arm_registration = arm_registration
+    disarm_registration = disarm_registration
     change_dynamics = change_dynamics
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
@@ -274,40 +283,6 @@ class MotionGroup:
     def reset_shutdown(self, axis: int) -> StartResult:
         """MASR: leave the shutdown state; the loop stays open (a drive axis needs MSO)."""
         self.shutdown[axis] = False
-        return StartResult(handle=self.new_handle())
-
-    # -- watch position ------------------------------------------------------------------
-    def arm_watch(self, axis: int, position: float, forward: bool) -> StartResult:
-        """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
-        h = self.new_handle()
-        old = self.watch.arm(Watch(h, axis, position, forward, float(self.actual_position[axis])))
-        if old is not None:
-            self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
-        return StartResult(handle=h)
-
-    def disarm_watch(self, axis: int) -> StartResult:
-        """MDW: disarm the axis's watch; the arming instruction ends without completing."""
-        old = self.watch.disarm(axis)
-        if old is not None:
-            self.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
-        return StartResult(handle=self.new_handle())
-
-    # -- registration ---------------------------------------------------------------------
-    def arm_registration(self, axis: int, input_number: int) -> StartResult:
-        """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
-        an armed registration waits (IP) until MDR or a later MAR on the same input."""
-        h = self.new_handle()
-        old = self.registration.get((axis, input_number))
-        self.registration[(axis, input_number)] = h
-        if old is not None:
-            self.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
-        return StartResult(handle=h)
-
-    def disarm_registration(self, axis: int, input_number: int) -> StartResult:
-        """MDR: disarm the input; the arming MAR ends without completing."""
-        old = self.registration.pop((axis, input_number), None)
-        if old is not None:
-            self.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
         return StartResult(handle=self.new_handle())
 
     def kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
