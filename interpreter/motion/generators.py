@@ -132,6 +132,8 @@ class ProfileSet:
         self._fresh = True  # the objects hold the latest state
         self.done: list[ProfileGen] = []  # reached their end in the latest step
         self.group_stops: dict[int, GroupStop] = {}  # MGS handle -> its stops
+        # status arrays while the generators are unchanged (shared with the group: read-only)
+        self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
 
     @property
     def gens(self) -> list[ProfileGen]:
@@ -161,6 +163,7 @@ class ProfileSet:
         self._fresh = True
 
     def _rebuild(self) -> None:
+        self._status_cache = None
         gens = self._gens
         f = float
         self._axis = np.array([g.axis for g in gens], dtype=np.intp)
@@ -337,6 +340,9 @@ class ProfileSet:
         and jogs that follow their master (a lock direction other than None, locked)."""
         if self._dirty:
             self._rebuild()
+        cache = self._status_cache
+        if cache is not None and cache[0] == n and not self._md_rows:
+            return cache[1]  # same generators, no master-driven lock state: nothing changed
         out = {}
         for code, name in enumerate(_KIND_STATUS.values()):
             arr = np.zeros(n, dtype=bool)
@@ -353,4 +359,5 @@ class ProfileSet:
                     out["MoveLockStatus"][g.axis] = True
                 elif g.kind == GeneratorKind.JOG:
                     out["JogLockStatus"][g.axis] = True
+        self._status_cache = (n, out)
         return out

@@ -71,6 +71,9 @@ class TimeCamSet:
         self.last_dir: dict[int, int] = {}  # axis -> +1 same, -1 opposite (absent: none yet)
         self._dirty = True
         self._bank: ProfileBank | None = None
+        # status arrays while the cams are unchanged (shared with the group: read-only)
+        self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
+        self._claim_touched = False  # a stop freed a claim since the last status
 
     # -- membership ---------------------------------------------------------------
     def add(self, cam: TimeCam) -> None:
@@ -102,6 +105,7 @@ class TimeCamSet:
             c.a = float(self._a[k])
 
     def _rebuild(self) -> None:
+        self._status_cache = None
         cams = self.cams
         profiles: list[CamProfile] = []
         index: dict[int, int] = {}
@@ -144,6 +148,7 @@ class TimeCamSet:
             self.claim.clear()
         elif stop_type in (StopType.ALL, StopType.TIME_CAM):
             self.claim.discard(axis)
+        self._claim_touched = True
 
     def busy(self, axis: int) -> bool:
         return bool(self.on_axis(axis))
@@ -354,17 +359,25 @@ class TimeCamSet:
     def status(self, n: int) -> dict[str, np.ndarray]:
         """TimeCamStatus (active), TimeCamPendingStatus, TimeCamLockStatus (following a
         master with a lock direction)."""
+        if self._dirty:
+            self._rebuild()
+        cache = self._status_cache
+        if cache is not None and cache[0] == n and not self._md_rows and not self._claim_touched:
+            return cache[1]  # same cams, no master-driven lock state: nothing changed
         # asked at the end of an update, when every queued request has been applied: the
         # claim on an axis is exactly its running cam
         self.claim = set(self.active_axes().tolist())
         self.claim_mode = {c.axis: c.clock is not None for c in self.cams}
+        self._claim_touched = False
         tc = np.zeros(n, dtype=bool)
         tc[self.active_axes()] = True
         tp = np.zeros(n, dtype=bool)
         tp[list(self.pending)] = True
         tl = np.zeros(n, dtype=bool)
         tl[self.locked_axes()] = True
-        return {"TimeCamStatus": tc, "TimeCamPendingStatus": tp, "TimeCamLockStatus": tl}
+        out = {"TimeCamStatus": tc, "TimeCamPendingStatus": tp, "TimeCamLockStatus": tl}
+        self._status_cache = (n, out)
+        return out
 
     def locked_axes(self) -> list[int]:
         return [
