@@ -76,12 +76,15 @@ class HomingSet:
     def __init__(self) -> None:
         self.waiting: dict[int, int] = {}  # axis -> handle of a passive homing that waits
         self.homed: set[int] = set()
+        self.version = 0  # bumped on every change of waiting/homed (status cache key)
+        self._status_cache: tuple[int, int, dict[str, np.ndarray]] | None = None
 
     def end_on(self, axis: int, ev: Events) -> None:
         """A stop, servo off or shutdown ends a waiting homing (IP cleared, no PC)."""
         h = self.waiting.pop(axis, None)
         if h is not None:
             ev.append((h, EventKind.ENDED, axis))
+            self.version += 1
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         pass
@@ -126,11 +129,16 @@ class HomingSet:
         pass
 
     def status(self, n: int) -> dict[str, np.ndarray]:
+        cache = self._status_cache
+        if cache is not None and cache[0] == n and cache[1] == self.version:
+            return cache[2]
         homing = np.zeros(n, dtype=bool)
         homing[list(self.waiting)] = True
         homed = np.zeros(n, dtype=bool)
         homed[list(self.homed)] = True
-        return {"HomingStatus": homing, "AxisHomedStatus": homed}
+        out = {"HomingStatus": homing, "AxisHomedStatus": homed}
+        self._status_cache = (n, self.version, out)
+        return out
 
 
 def home(
@@ -162,11 +170,13 @@ def home(
         ev.append((h, EventKind.IN_PROCESS, axis))
         if waits:
             homing.waiting[axis] = h
+            homing.version += 1
             return
         if mode == HomeMode.ACTIVE:
             group.kill_axis(axis, ev)
         group.shift_position(axis, home_position - float(group.actual_position[axis]))
         homing.homed.add(axis)
+        homing.version += 1
         group.status["AxisHomedStatus"][axis] = True
         ev.append((h, EventKind.COMPLETE, axis))
 

@@ -36,6 +36,8 @@ class LinkTable:
     def __init__(self) -> None:
         self.pending: dict[tuple[int, MotionType], MasterLink] = {}
         self.active: dict[tuple[int, MotionType], MasterLink] = {}
+        self.version = 0  # bumped on every change of the tables (status cache key)
+        self._status_cache: tuple[int, int, dict[str, np.ndarray]] | None = None
 
     def find(self, slave: int, mt: MotionType) -> MasterLink | None:
         for table in (self.pending, self.active):
@@ -53,6 +55,7 @@ class LinkTable:
                 if old is not None and old is not link:
                     ev.append((old.handle, EventKind.ENDED, slave))
                 self.active[key] = link
+                self.version += 1
                 return link
         return self.find(slave, mt)
 
@@ -61,6 +64,7 @@ class LinkTable:
             for key in [k for k, lk in table.items() if pred(lk)]:
                 ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
                 del table[key]
+                self.version += 1
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         pass
@@ -107,10 +111,15 @@ class LinkTable:
         pass
 
     def status(self, n: int) -> dict[str, np.ndarray]:
+        cache = self._status_cache
+        if cache is not None and cache[0] == n and cache[1] == self.version:
+            return cache[2]
         cm = np.zeros(n, dtype=bool)
         cm[[lk.slave for lk in self.active.values()]] = True
         cm[[lk.slave for lk in self.pending.values()]] = True
-        return {"CoordinatedMotionStatus": cm}
+        out = {"CoordinatedMotionStatus": cm}
+        self._status_cache = (n, self.version, out)
+        return out
 
 
 def assign_master(
@@ -146,6 +155,7 @@ def assign_master(
     old = links.pending.get(key)
     link = MasterLink(h, slave, master, MotionType(motion_type), MasterReference(reference))
     links.pending[key] = link
+    links.version += 1
     if old is not None:  # a later MDAC overrides a pending one
         group.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
     return StartResult(handle=h)
