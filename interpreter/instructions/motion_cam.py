@@ -102,7 +102,7 @@ def matc(
     )  # fmt: skip
     if failed(rt, ctl, r):
         return
-    tr = Tracked("MATC", ctl, ax, profile=elements[0])
+    tr = Tracked(ctl, (ax,), pc=True, profile=elements[0])
     rt.track(ax.group, r.handle, tr)
     if schedule == 1:
         set_axis_status(ax, TimeCamPendingStatus=1)
@@ -130,7 +130,7 @@ def mdac(
     r = sa.group.core.assign_master(sa.index, ma.index, whole(motion_type), whole(master_reference))
     if failed(rt, ctl, r):
         return
-    rt.track(sa.group, r.handle, Tracked("MDAC", ctl, sa))
+    rt.track(sa.group, r.handle, Tracked(ctl, (sa,), link=True))
     set_axis_status(sa, CoordinatedMotionStatus=1)
     set_bits(ctl, DN=1, IP=1)
 

@@ -61,7 +61,7 @@ def maw(
             # WatchTime: the CST (µs, low 32 bits) of the update that saw the crossing
             ax.value[ax.layout.index["WATCHTIME"]] = wrap(round(g.core.time * 1e6), 32, True)
 
-    rt.track(ax.group, r.handle, Tracked("MAW", ctl, None, on_end=on_end))
+    rt.track(ax.group, r.handle, Tracked(ctl, pc=True, on_end=on_end))
     set_bits(ctl, DN=1, IP=1)
 
 
@@ -122,7 +122,7 @@ def mar(
     n = whole(input_number)
     r = ax.group.core.arm_registration(ax.index, n)
     set_tag_bits(ax, **{f"RegEvent{n}ArmedStatus": 1, f"RegEvent{n}Status": 0})
-    rt.track(ax.group, r.handle, Tracked("MAR", ctl, None))
+    rt.track(ax.group, r.handle, Tracked(ctl))
     set_bits(ctl, DN=1, IP=1)
 
 

@@ -93,7 +93,7 @@ def mag(
     )
     if failed(rt, ctl, r):
         return
-    rt.track(g, r.handle, Tracked("MAG", ctl, sa))
+    rt.track(g, r.handle, Tracked(ctl, (sa,)))
     set_bits(ctl, DN=1, IP=1)
 
 

@@ -108,7 +108,7 @@ def mam(
     shape, mm, dyn = block
     if isinstance(dyn, TimeBased):  # a rest-to-rest move lasting the programmed time
         if whole(merge_speed) == 1:
-            fail(rt, ctl, MotionError.MERGE_CURRENT_WITH_SECONDS)
+            fail(rt, ctl, MotionError.MERGE_CURRENT_USING_SECONDS)
             return
         if (
             abs(float(core.command_velocity[i])) > _AT_REST
@@ -134,7 +134,7 @@ def mam(
     on_start = None
     if event_distance is not None and calculated_data is not None:
         on_start = _event_points(r.handle, event_distance, calculated_data)
-    rt.track(ax.group, r.handle, Tracked("MAM", ctl, ax, on_start=on_start))
+    rt.track(ax.group, r.handle, Tracked(ctl, (ax,), pc=True, on_start=on_start))
     set_bits(ctl, DN=1, IP=1)
 
 
@@ -194,7 +194,7 @@ def maj(
     )  # fmt: skip
     if failed(rt, ctl, r):
         return
-    rt.track(ax.group, r.handle, Tracked("MAJ", ctl, ax))
+    rt.track(ax.group, r.handle, Tracked(ctl, (ax,)))
     set_bits(ctl, DN=1, IP=1)
 
 
@@ -244,7 +244,7 @@ def mas(
     r = core.stop(i, whole(stop_type), decel, jerk)
     if failed(rt, ctl, r):
         return
-    rt.track(ax.group, r.handle, Tracked("MAS", ctl, ax))
+    rt.track(ax.group, r.handle, Tracked(ctl, (ax,), pc=True))
     set_bits(ctl, DN=1, IP=1)
 
 
@@ -286,7 +286,7 @@ def mgs(ctx: ExecContext, rung: bool, group: list, ctl: list, stop_mode: int) ->
             elif completed and mode == FAST_SHUTDOWN:
                 grp.core.shutdown_axis(axis_index)
 
-    rt.track(g, r.handle, Tracked("MGS", ctl, None, on_end=on_end))
+    rt.track(g, r.handle, Tracked(ctl, pc=True, on_end=on_end))
     set_bits(ctl, DN=1, IP=1)
 
 

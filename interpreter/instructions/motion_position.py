@@ -33,7 +33,7 @@ def mah(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
     )
     if failed(rt, ctl, r):
         return
-    rt.track(ax.group, r.handle, Tracked("MAH", ctl, None))
+    rt.track(ax.group, r.handle, Tracked(ctl, pc=True))
     set_bits(ctl, DN=1, IP=1)
 
 

@@ -219,9 +219,15 @@ class ProfileBank:
         self, prof: np.ndarray, local: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Evaluate profile prof[k] at local master offset local[k] (0..span) for every k."""
-        g = local + self.base[prof]
+        return self.evaluate_rows(self.base[prof], self.first_seg[prof], self.last_seg[prof], local)
+
+    def evaluate_rows(
+        self, base: np.ndarray, first: np.ndarray, last: np.ndarray, local: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """evaluate() with the per-row profile data gathered beforehand (base[prof], ...)."""
+        g = local + base
         i = np.searchsorted(self.knots, g, side="right") - 1
-        i = np.clip(i, self.first_seg[prof], self.last_seg[prof])
+        i = np.minimum(np.maximum(i, first), last)
         u = g - self.knots[i]
         c = self.coef[i]
         c0, c1, c2, c3 = c[:, 0], c[:, 1], c[:, 2], c[:, 3]

@@ -53,6 +53,13 @@ class MasterClock:
             self.value = self.peak
         return self.value
 
+    def shift(self, axis: int, delta: float) -> None:
+        """Axis `axis` was redefined by delta (MRP, MAH): if it is the master, the distance
+        keeps counting travel, so the slave does not see the jump."""
+        if self.master == axis:
+            self.start = None if self.start is None else self.start + delta
+            self.prev = None if self.prev is None else self.prev + delta
+
     @property
     def locked(self) -> bool:
         return self.start is not None and self.following

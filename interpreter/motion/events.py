@@ -10,10 +10,16 @@ the position when armed does not fire until it comes back and crosses it
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import EventKind
+from interpreter.motion.enums import EventKind, StopType
+from interpreter.motion.errors import StartResult
+from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
+
+if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the class
+    from interpreter.motion.group import MotionGroup
 
 
 @dataclass(slots=True)
@@ -28,6 +34,8 @@ class Watch:
 @dataclass(slots=True)
 class WatchSet:
     armed: dict[int, Watch] = field(default_factory=dict)  # by axis
+    # MAR: (axis, input) -> handle; nothing is wired to the simulated inputs (decision 0065)
+    registration: dict[tuple[int, int], int] = field(default_factory=dict)
 
     def arm(self, watch: Watch) -> Watch | None:
         """Arm a watch; returns the watch it replaces on the same axis, if any."""
@@ -38,6 +46,47 @@ class WatchSet:
     def disarm(self, axis: int) -> Watch | None:
         return self.armed.pop(axis, None)
 
+    # -- as a process set of the group (decision 0104): no motion, it watches the result
+    def begin_update(self) -> None:
+        pass
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        return EMPTY
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        self.check(actual, events)
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return np.zeros(n), np.zeros(n)
+
+    def edges(self) -> list[tuple[int, int]]:
+        return []
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        pass  # a watch compares actual positions as they are (after MRP too)
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        return {}
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
+    def busy(self, axis: int) -> bool:
+        return False  # moves nothing
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        return 0.0, False  # a watch stays armed through stops (only MDW or a new MAW ends it)
+
     def check(self, actual: np.ndarray, ev: list[tuple[int, EventKind, int]]) -> None:
         """Fire (COMPLETE) and disarm every watch whose position was passed this update."""
         for axis, w in list(self.armed.items()):
@@ -47,3 +96,45 @@ class WatchSet:
             if hit:
                 del self.armed[axis]
                 ev.append((w.handle, EventKind.COMPLETE, axis))
+
+
+# -- watch position ------------------------------------------------------------------
+
+
+def arm_watch(group: MotionGroup, axis: int, position: float, forward: bool) -> StartResult:
+    """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
+    h = group.new_handle()
+    old = group.watch.arm(Watch(h, axis, position, forward, float(group.actual_position[axis])))
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+    return StartResult(handle=h)
+
+
+def disarm_watch(group: MotionGroup, axis: int) -> StartResult:
+    """MDW: disarm the axis's watch; the arming instruction ends without completing."""
+    old = group.watch.disarm(axis)
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
+    return StartResult(handle=group.new_handle())
+
+
+# -- registration ---------------------------------------------------------------------
+
+
+def arm_registration(group: MotionGroup, axis: int, input_number: int) -> StartResult:
+    """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
+    an armed registration waits (IP) until MDR or a later MAR on the same input."""
+    h = group.new_handle()
+    old = group.watch.registration.get((axis, input_number))
+    group.watch.registration[(axis, input_number)] = h
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+    return StartResult(handle=h)
+
+
+def disarm_registration(group: MotionGroup, axis: int, input_number: int) -> StartResult:
+    """MDR: disarm the input; the arming MAR ends without completing."""
+    old = group.watch.registration.pop((axis, input_number), None)
+    if old is not None:
+        group.after_update(lambda ev: ev.append((old, EventKind.ENDED, axis)))
+    return StartResult(handle=group.new_handle())

@@ -17,24 +17,24 @@ matches speed, not position).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import MasterReference
+from interpreter.motion.enums import CamDirection, EventKind, MasterReference, StopType
+from interpreter.motion.errors import MotionError, StartResult, bad_operand
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
 
-
-@dataclass(frozen=True, slots=True)
-class GearStep:
-    """Per-gear results of one update: slave axis, position change, velocity, acceleration."""
-
-    axis: np.ndarray
-    dpos: np.ndarray
-    vel: np.ndarray
-    acc: np.ndarray
-
-
-_EMPTY = GearStep(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
+if TYPE_CHECKING:  # the group calls start_gear; only the annotation needs the class
+    from interpreter.motion.group import MotionGroup
 
 
 class GearSet:
@@ -51,6 +51,7 @@ class GearSet:
         self.v = np.zeros(0)  # the gear's own contribution to the slave velocity
         self.a = np.zeros(0)
         self.locked = np.zeros(0, dtype=bool)
+        self.last_dir: dict[int, int] = {}  # slave -> +1 same, -1 opposite (absent: none yet)
 
     def __len__(self) -> int:
         return len(self.handle)
@@ -85,6 +86,29 @@ class GearSet:
         self.a = np.append(self.a, 0.0)
         self.locked = np.append(self.locked, locked)
 
+    def end_on(self, slave: int, ev: Events) -> tuple[float, bool]:
+        """End the gearing of a slave: (the velocity it contributed, for hand-overs; whether
+        a gear ended)."""
+        ended = self.remove(self.rows_on(slave))
+        for h, _, _ in ended:
+            ev.append((h, EventKind.ENDED, slave))
+        return sum((v for _, _, v in ended), 0.0), bool(ended)
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
+    def busy(self, axis: int) -> bool:
+        return bool(len(self.rows_on(axis)))
+
+    def links_in_use(self) -> set[int]:
+        return set()  # gears name their master themselves (MAG), not through MDAC
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """Stops (All, Gear), merges and kills end the gearing of the slave."""
+        if reason not in (Ending.KILL, Ending.MERGE_ALL, StopType.ALL, StopType.GEAR):
+            return 0.0, False
+        return self.end_on(axis, events)
+
     def rows_on(self, slave: int) -> np.ndarray:
         return np.flatnonzero(self.slave == slave)
 
@@ -107,6 +131,20 @@ class GearSet:
         """(slave, master) pairs for the masters-before-slaves ordering."""
         return list(zip(self.slave.tolist(), self.master.tolist(), strict=True))
 
+    def begin_update(self) -> None:
+        pass
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        pass
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """GearingStatus (geared) and GearingLockStatus (clutch done)."""
+        gear = np.zeros(n, dtype=bool)
+        gear[self.slave] = True
+        lock = np.zeros(n, dtype=bool)
+        lock[self.slave[self.locked]] = True
+        return {"GearingStatus": gear, "GearingLockStatus": lock}
+
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         return np.bincount(self.slave, self.v, n), np.bincount(self.slave, self.a, n)
 
@@ -114,19 +152,20 @@ class GearSet:
     def step(
         self,
         cup: float,
-        level_sel: tuple[np.ndarray, int] | None,
-        positions: tuple[np.ndarray, np.ndarray],
-        velocities: tuple[np.ndarray, np.ndarray],
-    ) -> GearStep:
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events | None = None,  # gears report no events from a step
+    ) -> Contribution:
         """Advance the gears (all, or those whose slave has the given level) one update."""
         if not len(self):
-            return _EMPTY
+            return EMPTY
         if level_sel is None:
             rows = np.arange(len(self))
         else:
             rows = np.flatnonzero(level_sel[0][self.slave] == level_sel[1])
             if not len(rows):
-                return _EMPTY
+                return EMPTY
         master, ref = self.master[rows], self.ref[rows]
         m = np.where(ref == 0, positions[0][master], positions[1][master])
         mv = np.where(ref == 0, velocities[0][master], velocities[1][master])
@@ -145,4 +184,57 @@ class GearSet:
         self.v[rows] = vel
         self.a[rows] = acc
         self.locked[rows] = locked | reach
-        return GearStep(self.slave[rows], dp, vel, acc)
+        return Contribution(self.slave[rows], dp, vel, acc)
+
+
+def start_gear(
+    group: MotionGroup,
+    gears: GearSet,
+    slave: int,
+    master: int,
+    direction: int,
+    ratio: float,
+    reference: int = MasterReference.COMMAND,
+    clutch_accel: float = math.inf,
+) -> StartResult:
+    """MAG: from the next update the slave adds ratio x the master's travel; a gear
+    already on the slave is replaced, its velocity carried into the clutch ramp.
+    `ratio` is unsigned by direction (Same +1, Opposite -1, Reverse / Unchanged relative
+    to the slave's present gearing direction); clutch_accel inf: lock at once."""
+    if slave == master:
+        return StartResult(error=MotionError.MASTER_AXIS_CONFLICT)
+    if direction not in (0, 1, 2, 3):
+        return bad_operand(3)
+    if not math.isfinite(ratio):
+        return bad_operand(4)
+    if reference not in MasterReference.__members__.values():
+        return bad_operand(7)
+    if not clutch_accel > 0.0:
+        return bad_operand(10)
+    if group.shutdown[slave]:
+        return StartResult(error=MotionError.SHUTDOWN_STATE)
+    if not group.servo_on[slave]:
+        return StartResult(error=MotionError.SERVO_OFF_STATE)
+    last = gears.last_dir.get(slave, 0)
+    sign = {
+        CamDirection.SAME: 1,
+        CamDirection.OPPOSITE: -1,
+        CamDirection.REVERSE: -last if last else -1,
+        CamDirection.UNCHANGED: last if last else 1,
+    }[CamDirection(direction)]
+    gears.last_dir[slave] = sign
+    ref = group.effective_reference(master, MasterReference(reference))
+    h = group.new_handle()
+
+    def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+        v0 = gears.end_on(slave, ev)[0]
+        if ref == MasterReference.ACTUAL:
+            mpos, mvel = group.actual_position[master], group.actual_velocity[master]
+        else:
+            mpos, mvel = group.command_position[master], group.command_velocity[master]
+        gears.add(h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0)
+        group.levels_changed()
+        ev.append((h, EventKind.IN_PROCESS, slave))
+
+    group.after_update(apply)
+    return StartResult(handle=h)

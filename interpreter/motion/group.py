@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -23,52 +23,60 @@ from interpreter.motion.enums import (
     EventKind,
     ExecutionMode,
     ExecutionSchedule,
-    GeneratorKind,
-    HomeMode,
     InstructionMode,
     LockDirection,
     MasterReference,
-    MergeMode,
-    MergeSpeed,
     MotionType,
-    MoveType,
-    ProfileShape,
     StopType,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
-from interpreter.motion.events import Watch, WatchSet
-from interpreter.motion.gear import GearSet
-from interpreter.motion.generators import ProfileGen
-from interpreter.motion.homing import homing_error
-from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
+from interpreter.motion.events import (
+    WatchSet,
+    arm_registration,
+    arm_watch,
+    disarm_registration,
+    disarm_watch,
+)
+from interpreter.motion.gear import GearSet, start_gear
+from interpreter.motion.generators import ProfileGen, ProfileSet
+from interpreter.motion.homing import HomingSet, home
+from interpreter.motion.links import LinkTable, MasterLink, assign_master
+from interpreter.motion.moves import (
+    change_dynamics,
+    end_gen,
+    generator_profile,
+    running_limits,
+    start_jog,
+    start_move,
+    stop,
+    stop_group,
+)
+from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
-from interpreter.motion.timecam import TimeCam, TimeCamSet
+from interpreter.motion.timecam import TimeCamSet, start_time_cam
+from stdlib import catalog
+
+
+def _motion_status_bits() -> dict[str, int]:
+    """Bit numbers of the AXIS MotionStatus word, read from the catalog: the BOOL members
+    with a `bit` that follow the MotionStatus member of the AXIS types (stdlib/types)."""
+    td = catalog().type("AXIS_VIRTUAL")
+    assert td is not None
+    bits: dict[str, int] = {}
+    after = False
+    for m in td.members:
+        if m.name == "MotionStatus":
+            after = True
+        elif after:
+            if m.bit is None:
+                break
+            bits[m.name] = m.bit
+    assert bits, "AXIS MotionStatus bits missing from the catalog"
+    return bits
+
 
 # Bit numbers of the AXIS MotionStatus word (names are the AXIS attribute names).
-STATUS_BITS: dict[str, int] = {
-    "AccelStatus": 0,
-    "DecelStatus": 1,
-    "MoveStatus": 2,
-    "JogStatus": 3,
-    "GearingStatus": 4,
-    "HomingStatus": 5,
-    "StoppingStatus": 6,
-    "AxisHomedStatus": 7,
-    "PositionCamStatus": 8,
-    "TimeCamStatus": 9,
-    "PositionCamPendingStatus": 10,
-    "TimeCamPendingStatus": 11,
-    "GearingLockStatus": 12,
-    "PositionCamLockStatus": 13,
-    "TimeCamLockStatus": 14,
-    "MasterOffsetMoveStatus": 15,
-    "CoordinatedMotionStatus": 16,
-    "MoveLockStatus": 22,
-    "JogLockStatus": 24,
-    "MasterOffsetMoveLockStatus": 26,
-    "MaximumSpeedExceeded": 27,
-}
-
+STATUS_BITS: dict[str, int] = _motion_status_bits()
 _STATUS_SHIFTS = np.array(list(STATUS_BITS.values()), dtype=np.uint32)
 _VEL_EPS = 1e-9
 
@@ -95,30 +103,6 @@ class AxisConfig:
     max_decel_jerk: float = math.inf
 
 
-@dataclass(slots=True)
-class MasterLink:
-    """An MDAC assignment of a master to a slave for one motion type."""
-
-    handle: int
-    slave: int
-    master: int
-    motion_type: MotionType
-    reference: MasterReference
-
-
-@dataclass(slots=True)
-class _GroupStop:
-    handle: int
-    members: set[int] = field(default_factory=set)
-
-
-_MOTION_OF_KIND = {
-    GeneratorKind.MOVE: MotionType.MOVE,
-    GeneratorKind.JOG: MotionType.JOG,
-    GeneratorKind.TIME_CAM: MotionType.TIME_CAM,
-}
-
-
 class MotionGroup:
     """State of all axes of a motion group; update() advances them one coarse update."""
 
@@ -137,29 +121,55 @@ class MotionGroup:
         self.servo_on = np.zeros(0, dtype=bool)
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
         self.watch = WatchSet()  # MAW watch-position events
-        self.registration: dict[tuple[int, int], int] = {}  # (axis, input) -> MAR handle
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
         self._alpha = np.zeros(0)
-        self._last_cam_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
         self._levels_dirty = False
         self.status: dict[str, np.ndarray] = {}
-        self._gens: list[ProfileGen] = []
+        # moves, jogs and stops; ending one goes through moves.end_gen (MGS bookkeeping)
+        self.moves = ProfileSet(lambda g, kind, ev: end_gen(self, g, kind, ev))
         self._cams = TimeCamSet()
         self._pre: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._post: list[Callable[[list[tuple[int, EventKind, int]]], None]] = []
         self._next_handle = 1
-        self._cam_claim: set[int] = set()  # axes with an active or queued immediate cam
-        self._claim_mode: dict[int, bool] = {}  # claimed axis -> its cam is master driven
-        self._links_pending: dict[tuple[int, MotionType], MasterLink] = {}
-        self._links_active: dict[tuple[int, MotionType], MasterLink] = {}
-        self._group_stops: dict[int, _GroupStop] = {}
+        self._links = LinkTable()  # MDAC master assignments
         self._gears = GearSet()
-        self._last_gear_dir = np.zeros(0, dtype=np.int8)  # 0 none yet, +1 same, -1 opposite
-        self._homing: dict[int, int] = {}  # axis -> handle of a passive homing that waits
+        self._homing = HomingSet()
+        # every kind of motion process, stepped in this order at each level (decision 0104)
+        self._sets: list[ProcessSet] = [
+            self.moves,
+            self._cams,
+            self._gears,
+            self.watch,
+            self._homing,
+            self._links,
+        ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
+
+    @property
+    def _gens(self) -> list[ProfileGen]:
+        """The move/jog/stop generators, for start calls that edit them (rows rebuilt)."""
+        return self.moves.gens
+
+    # the start calls of each kind, bound as methods (decision 0104)
+    generator_profile = generator_profile
+    running_limits = running_limits
+    start_move = start_move
+    start_jog = start_jog
+    stop = stop
+    stop_group = stop_group
+    arm_watch = arm_watch
+    disarm_watch = disarm_watch
+    arm_registration = arm_registration
+    disarm_registration = disarm_registration
+    change_dynamics = change_dynamics
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""
+        for ps in self._sets:
+            ps.stop_requested(axis, stop_type)
 
     # -- configuration ---------------------------------------------------------------
     def add_axis(
@@ -190,8 +200,6 @@ class MotionGroup:
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
         self._alpha = lag_alpha(self.tau, self.cup)
-        self._last_cam_dir = np.append(self._last_cam_dir, np.int8(0))
-        self._last_gear_dir = np.append(self._last_gear_dir, np.int8(0))
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
         for name_ in STATUS_BITS:
@@ -217,9 +225,22 @@ class MotionGroup:
 
     def reserve_handle(self) -> int:
         """A fresh handle for a request that starts no generator (e.g. a fault reset)."""
-        return self._handle()
+        return self.new_handle()
 
-    def _handle(self) -> int:
+    # -- services for the process modules (start calls of each kind) -------------------
+    def after_update(self, fn: Callable[[list[tuple[int, EventKind, int]]], None]) -> None:
+        """Apply a start request at the end of the next update (its own clock is 0 there)."""
+        self._post.append(fn)
+
+    def before_update(self, fn: Callable[[list[tuple[int, EventKind, int]]], None]) -> None:
+        """Apply a request at the start of the next update, before its motion step."""
+        self._pre.append(fn)
+
+    def levels_changed(self) -> None:
+        """A process that follows a master started or ended: recompute the levels."""
+        self._levels_dirty = True
+
+    def new_handle(self) -> int:
         h = self._next_handle
         self._next_handle += 1
         return h
@@ -233,85 +254,57 @@ class MotionGroup:
             self.servo_on[axis] = True
             # the loop closes at the current actual position: no jump
             self.command_position[axis] = self.actual_position[axis]
-        return StartResult(handle=self._handle())
+        return StartResult(handle=self.new_handle())
 
     def servo_off_axis(self, axis: int) -> StartResult:
         """MSF: open the loop; running motion on the axis ends at the next update."""
-        h = self._handle()
+        h = self.new_handle()
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
-        self._pre.append(lambda ev: self._kill_axis(axis, ev))
+        self.before_update(lambda ev: self.kill_axis(axis, ev))
         return StartResult(handle=h)
 
     def shutdown_axis(self, axis: int) -> StartResult:
         """MASD: end all motion of the axis at once, break its MDAC links and keep it in the
         shutdown state (motion is refused with error 7) until reset_shutdown."""
-        h = self._handle()
+        h = self.new_handle()
         self.shutdown[axis] = True
         if not self.virtual[axis]:
             self.servo_on[axis] = False
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            self._kill_axis(axis, ev)
+            self.kill_axis(axis, ev)
             self._break_links(lambda lk: axis in (lk.slave, lk.master), ev)
 
-        self._pre.append(apply)
+        self.before_update(apply)
         return StartResult(handle=h)
 
     def reset_shutdown(self, axis: int) -> StartResult:
         """MASR: leave the shutdown state; the loop stays open (a drive axis needs MSO)."""
         self.shutdown[axis] = False
-        return StartResult(handle=self._handle())
+        return StartResult(handle=self.new_handle())
 
-    # -- watch position ------------------------------------------------------------------
-    def arm_watch(self, axis: int, position: float, forward: bool) -> StartResult:
-        """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
-        h = self._handle()
-        old = self.watch.arm(Watch(h, axis, position, forward, float(self.actual_position[axis])))
-        if old is not None:
-            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
-        return StartResult(handle=h)
-
-    def disarm_watch(self, axis: int) -> StartResult:
-        """MDW: disarm the axis's watch; the arming instruction ends without completing."""
-        old = self.watch.disarm(axis)
-        if old is not None:
-            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
-        return StartResult(handle=self._handle())
-
-    # -- registration ---------------------------------------------------------------------
-    def arm_registration(self, axis: int, input_number: int) -> StartResult:
-        """MAR: arm registration input 1 or 2. Nothing is wired to the simulated inputs, so
-        an armed registration waits (IP) until MDR or a later MAR on the same input."""
-        h = self._handle()
-        old = self.registration.get((axis, input_number))
-        self.registration[(axis, input_number)] = h
-        if old is not None:
-            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
-        return StartResult(handle=h)
-
-    def disarm_registration(self, axis: int, input_number: int) -> StartResult:
-        """MDR: disarm the input; the arming MAR ends without completing."""
-        old = self.registration.pop((axis, input_number), None)
-        if old is not None:
-            self._post.append(lambda ev: ev.append((old, EventKind.ENDED, axis)))
-        return StartResult(handle=self._handle())
-
-    def _kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
-        for g in [g for g in self._gens if g.axis == axis]:
-            self._end_gen(g, EventKind.ENDED, ev)
-        cams = self._cams.on_axis(axis)
-        for c in cams:
-            ev.append((c.handle, EventKind.ENDED, axis))
-        self._cams.remove(cams)
-        self._drop_pending(axis, ev)
-        self._cam_claim.discard(axis)
-        self._end_gears(axis, ev)
-        self._end_homing(axis, ev)
+    def kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
+        """End every motion of the axis at once (servo off, shutdown, active homing)."""
+        self.end_axis(axis, Ending.KILL, ev)
         self.command_velocity[axis] = 0.0
         self.command_acceleration[axis] = 0.0
         self._levels_dirty = True
+
+    def end_axis(
+        self, axis: int, reason: EndReason, ev: list[tuple[int, EventKind, int]]
+    ) -> tuple[float, bool]:
+        """Every set ends what `reason` ends on the axis, in step order; returns the summed
+        command velocity of what ended (carried on by a stop or merge) and whether any did."""
+        v, any_ended = 0.0, False
+        for ps in self._sets:
+            dv, ended = ps.end_axis(axis, reason, ev)
+            v += dv
+            any_ended = any_ended or ended
+        if any_ended:
+            self._levels_dirty = True
+        return v, any_ended
 
     # -- MDAC ----------------------------------------------------------------------------
     def assign_master(
@@ -321,434 +314,48 @@ class MotionGroup:
         motion_type: int = MotionType.ALL,
         reference: int = MasterReference.COMMAND,
     ) -> StartResult:
-        """MDAC: a pending master for the slave's next master-driven motion of that type."""
-        if slave == master:
-            return bad_operand(1)
-        if motion_type not in MotionType.__members__.values():
-            return bad_operand(3)
-        if reference not in MasterReference.__members__.values():
-            return bad_operand(4)
-        mt = MotionType(motion_type)
-        existing = [
-            lk for t in (self._links_pending, self._links_active) for lk in t.values()
-            if lk.slave == slave
-        ]  # fmt: skip
-        # All and a specific motion type cannot be assigned to one slave at the same time
-        if any((lk.motion_type == MotionType.ALL) != (mt == MotionType.ALL) for lk in existing):
-            return StartResult(error=MotionError.MDSC_ALL_CONFLICT)
-        eff = self._effective_reference(master, MasterReference(reference))
-        if self.axis_busy(slave) and any(
-            self._effective_reference(lk.master, lk.reference) != eff for lk in existing
-        ):  # the master reference of a moving slave cannot change
-            return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
-        h = self._handle()
-        key = (slave, mt)
-        old = self._links_pending.get(key)
-        link = MasterLink(h, slave, master, MotionType(motion_type), MasterReference(reference))
-        self._links_pending[key] = link
-        if old is not None:  # a later MDAC overrides a pending one
-            self._post.append(lambda ev: ev.append((old.handle, EventKind.ENDED, slave)))
-        return StartResult(handle=h)
+        """MDAC (see links.assign_master)."""
+        return assign_master(self, self._links, slave, master, motion_type, reference)
 
-    def _effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
+    def effective_reference(self, master: int, reference: MasterReference) -> MasterReference:
         """A virtual master has no actual position of its own: it is always followed by command."""
         return MasterReference.COMMAND if self.virtual[master] else reference
 
     def axis_busy(self, axis: int) -> bool:
-        """Is any generator or time cam running on the axis (or is it still moving)?"""
+        """Is any process moving the axis (or is it still moving)?"""
         return (
-            any(g.axis == axis for g in self._gens)
-            or bool(self._cams.on_axis(axis))
-            or bool(len(self._gears.rows_on(axis)))
+            any(ps.busy(axis) for ps in self._sets)
             or abs(float(self.command_velocity[axis])) > _VEL_EPS
         )
 
     def links_in_use(self) -> set[int]:
-        """MDAC handles that drive a running master-driven generator or cam (MDAC .AC)."""
-        used = {g.link for g in self._gens if g.link}
-        used.update(c.link for c in self._cams.cams if c.link)
+        """MDAC handles that drive a running master-driven process (MDAC .AC)."""
+        used: set[int] = set()
+        for ps in self._sets:
+            used |= ps.links_in_use()
         return used
 
-    def generator_profile(self, handle: int) -> MoveProfile | None:
-        """The planned profile of a running move/jog/stop (for event distances and plots)."""
-        for g in self._gens:
-            if g.handle == handle:
-                return g.profile
-        return None
+    def find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
+        return self._links.find(slave, mt)
 
-    def running_limits(self, axis: int, kind: GeneratorKind) -> tuple[Limits, bool] | None:
-        """Limits of the latest running move/jog of the axis and whether it is master driven
-        (MCD: % of Time jerks and unit checks need what is in use)."""
-        for g in reversed(self._gens):
-            if g.axis == axis and g.kind == kind and g.limits is not None:
-                return g.limits, g.clock is not None
-        return None
-
-    def _find_link(self, slave: int, mt: MotionType) -> MasterLink | None:
-        for table in (self._links_pending, self._links_active):
-            for key in ((slave, mt), (slave, MotionType.ALL)):
-                if key in table:
-                    return table[key]
-        return None
-
-    def _take_link(self, slave: int, mt: MotionType, ev: list) -> MasterLink | None:
+    def take_link(self, slave: int, mt: MotionType, ev: list) -> MasterLink | None:
         """Promote a pending master (if any) at a slave motion start and return the link."""
-        for key in ((slave, mt), (slave, MotionType.ALL)):
-            link = self._links_pending.pop(key, None)
-            if link is not None:
-                old = self._links_active.get(key)
-                if old is not None and old is not link:
-                    ev.append((old.handle, EventKind.ENDED, slave))
-                self._links_active[key] = link
-                return link
-        return self._find_link(slave, mt)
+        return self._links.take(slave, mt, ev)
 
     def _break_links(self, pred: Callable[[MasterLink], bool], ev: list) -> None:
-        for table in (self._links_pending, self._links_active):
-            for key in [k for k, lk in table.items() if pred(lk)]:
-                ev.append((table[key].handle, EventKind.ENDED, table[key].slave))
-                del table[key]
+        self._links.break_where(pred, ev)
 
-    def _master_clock(
+    def master_clock(
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
     ) -> MasterClock:
-        ref = self._effective_reference(link.master, link.reference)
+        ref = self.effective_reference(link.master, link.reference)
         return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
 
-    def _master_state(self, clock: MasterClock) -> tuple[float, float]:
+    def master_state(self, clock: MasterClock) -> tuple[float, float]:
         m = clock.master
         if clock.reference == MasterReference.ACTUAL:
             return float(self.actual_position[m]), float(self.actual_velocity[m])
         return float(self.command_position[m]), float(self.command_velocity[m])
-
-    # -- moves and jogs ----------------------------------------------------------------
-    def start_move(
-        self,
-        axis: int,
-        move_type: int,
-        position: float,
-        speed: float,
-        accel: float,
-        decel: float,
-        profile: int = ProfileShape.TRAPEZOIDAL,
-        accel_jerk: float = math.inf,
-        decel_jerk: float = math.inf,
-        merge: int = MergeMode.DISABLED,
-        merge_speed: int = MergeSpeed.PROGRAMMED,
-        lock_position: float = 0.0,
-        lock_direction: int = LockDirection.NONE,
-        master_driven: bool = False,
-    ) -> StartResult:
-        """MAM: absolute or incremental move; EXERR indices follow the MAM faceplate."""
-        if move_type not in (0, 1):
-            return bad_operand(2)
-        if not math.isfinite(position):
-            return bad_operand(3)
-        err = self._check_dynamics(
-            speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
-            lock_direction, master_driven, axis, MotionType.MOVE, first=4, step=2,
-        )  # fmt: skip
-        if err is not None:
-            return err
-        h = self._handle()
-        lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.MOVE]
-            remaining = sum(g.goal - g.last_p for g in replaced)
-            v0, clock, link = self._merge_out(
-                axis,
-                replaced,
-                MergeMode(merge),
-                ev,
-                MotionType.MOVE,
-                master_driven,
-                LockDirection(lock_direction),
-                lock_position,
-            )
-            if move_type == MoveType.ABSOLUTE:
-                dist = position - float(self.command_position[axis])
-            else:  # an incremental move adds to the end point of the move it replaces
-                dist = position + remaining
-            use = lim
-            if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
-                use = Limits(abs(v0), lim.accel, lim.decel, lim.accel_jerk, lim.decel_jerk)
-            gen = ProfileGen(h, GeneratorKind.MOVE, axis, plan_move(dist, use, v0), clock, link)
-            gen.limits, gen.goal = use, dist
-            self._add_gen(gen, ev)
-
-        self._post.append(apply)
-        return StartResult(handle=h)
-
-    def start_jog(
-        self,
-        axis: int,
-        direction: int,
-        speed: float,
-        accel: float,
-        decel: float,
-        profile: int = ProfileShape.TRAPEZOIDAL,
-        accel_jerk: float = math.inf,
-        decel_jerk: float = math.inf,
-        merge: int = MergeMode.DISABLED,
-        merge_speed: int = MergeSpeed.PROGRAMMED,
-        lock_position: float = 0.0,
-        lock_direction: int = LockDirection.NONE,
-        master_driven: bool = False,
-    ) -> StartResult:
-        """MAJ: direction 0 forward, 1 reverse; runs until stopped or replaced."""
-        if direction not in (0, 1):
-            return bad_operand(2)
-        err = self._check_dynamics(
-            speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
-            lock_direction, master_driven, axis, MotionType.JOG, first=3, step=2,
-        )  # fmt: skip
-        if err is not None:
-            return err
-        h = self._handle()
-        lim = Limits.of(speed, accel, decel, ProfileShape(profile), accel_jerk, decel_jerk)
-        sign = 1.0 if direction == 0 else -1.0
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            replaced = [g for g in self._gens if g.axis == axis and g.kind == GeneratorKind.JOG]
-            v0, clock, link = self._merge_out(
-                axis,
-                replaced,
-                MergeMode(merge),
-                ev,
-                MotionType.JOG,
-                master_driven,
-                LockDirection(lock_direction),
-                lock_position,
-            )
-            target = sign * speed
-            if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
-                target = sign * abs(v0)
-            gen = ProfileGen(h, GeneratorKind.JOG, axis, plan_jog(target, lim, v0), clock, link)
-            gen.limits, gen.direction = lim, sign
-            self._add_gen(gen, ev)
-
-        self._post.append(apply)
-        return StartResult(handle=h)
-
-    def _check_dynamics(
-        self,
-        speed: float,
-        accel: float,
-        decel: float,
-        profile: int,
-        accel_jerk: float,
-        decel_jerk: float,
-        merge: int,
-        merge_speed: int,
-        lock_direction: int,
-        master_driven: bool,
-        axis: int,
-        mt: MotionType,
-        first: int,
-        step: int,
-    ) -> StartResult | None:
-        # operand order on both faceplates: Speed, Units, Accel, Units, Decel, Units,
-        # Profile, AccelJerk, DecelJerk, JerkUnits, Merge, MergeSpeed, LockPos, LockDir
-        if not (math.isfinite(speed) and speed >= 0.0):
-            return bad_operand(first)
-        # +inf is "unlimited" (a velocity step), as time-based planning with zero ramp time
-        if not accel > 0.0:
-            return bad_operand(first + step)
-        if not decel > 0.0:
-            return bad_operand(first + 2 * step)
-        p = first + 3 * step
-        if profile not in (0, 1):
-            return bad_operand(p)
-        if profile == ProfileShape.S_CURVE:
-            if not accel_jerk > 0.0:
-                return bad_operand(p + 1)
-            if not decel_jerk > 0.0:
-                return bad_operand(p + 2)
-        if merge not in (0, 1, 2):
-            return bad_operand(p + 4)
-        if merge_speed not in (0, 1):
-            return bad_operand(p + 5)
-        if lock_direction not in (0, 1, 2, 3, 4):
-            return bad_operand(p + 7)
-        if not master_driven and lock_direction != LockDirection.NONE:
-            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
-        if self.shutdown[axis]:
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        if not self.servo_on[axis]:
-            return StartResult(error=MotionError.SERVO_OFF_STATE)
-        if master_driven and self._find_link(axis, mt) is None:
-            return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
-        return None
-
-    def _merge_out(
-        self,
-        axis: int,
-        replaced: list[ProfileGen],
-        merge: MergeMode,
-        ev: list,
-        mt: MotionType,
-        master_driven: bool,
-        lock_direction: LockDirection,
-        lock_position: float,
-    ) -> tuple[float, MasterClock | None, int]:
-        """End the replaced generators (all motion for Merge All); their velocity carries on."""
-        v_time = sum(g.v for g in replaced)
-        v_native = sum(g.v_native for g in replaced)
-        same_units = all((g.clock is not None) == master_driven for g in replaced)
-        for g in replaced:
-            self._end_gen(g, EventKind.ENDED, ev)
-        if merge == MergeMode.ALL:
-            for g in [g for g in self._gens if g.axis == axis]:
-                v_time += g.v
-                same_units = False
-                self._end_gen(g, EventKind.ENDED, ev)
-            cams = self._cams.on_axis(axis)
-            for c in cams:
-                v_time += c.v
-                same_units = False
-                ev.append((c.handle, EventKind.ENDED, axis))
-            self._cams.remove(cams)
-            self._cam_claim.discard(axis)
-            if len(self._gears.rows_on(axis)):
-                v_time += self._end_gears(axis, ev)
-                same_units = False
-        clock, link_handle = None, 0
-        v0 = v_time
-        if master_driven:
-            link = self._take_link(axis, mt, ev)
-            assert link is not None
-            clock = self._master_clock(link, lock_direction, lock_position)
-            pos, mvel = self._master_state(clock)
-            clock.advance(pos)
-            link_handle = link.handle
-            ev.append((link.handle, EventKind.ACTIVE, axis))
-            if same_units and replaced:
-                v0 = v_native
-            else:
-                v0 = v_time / mvel if abs(mvel) > _VEL_EPS else 0.0
-        elif not same_units or not replaced:
-            v0 = v_time
-        return v0, clock, link_handle
-
-    def _add_gen(self, gen: ProfileGen, ev: list[tuple[int, EventKind, int]]) -> None:
-        """Start a generator at this update: own clock 0, contribution 0, velocity v0."""
-        gen.t = 0.0 if gen.clock is None else gen.clock.value
-        p, v, a = gen.profile.at(gen.t)
-        gen.last_p = p
-        gen.v_native = v
-        if gen.clock is None:
-            gen.v, gen.a = v, a
-        else:
-            _, mvel = self._master_state(gen.clock)
-            gen.v, gen.a = v * mvel, a * mvel * mvel
-        self._gens.append(gen)
-        self._levels_dirty = True
-        ev.append((gen.handle, EventKind.IN_PROCESS, gen.axis))
-        gen.phase = gen.current_phase()
-        ev.append((gen.handle, gen.phase, gen.axis))
-        if gen.finished:
-            self._end_gen(gen, EventKind.COMPLETE, ev)
-
-    def _end_gen(self, g: ProfileGen, kind: EventKind, ev: list) -> None:
-        if g in self._gens:
-            self._gens.remove(g)
-            self._levels_dirty = True
-        ev.append((g.handle, kind, g.axis))
-        if g.owner:
-            gs = self._group_stops.get(g.owner)
-            if gs is not None:
-                gs.members.discard(g.handle)
-                if not gs.members:
-                    ev.append((gs.handle, EventKind.COMPLETE, -1))
-                    del self._group_stops[g.owner]
-
-    # -- stops ---------------------------------------------------------------------------
-    def stop(
-        self,
-        axis: int,
-        stop_type: int = StopType.ALL,
-        decel: float | None = None,
-        decel_jerk: float | None = None,
-    ) -> StartResult:
-        """MAS: decelerate the selected motion to rest (None: the axis's configured limits)."""
-        if stop_type not in StopType.__members__.values():
-            return bad_operand(2)
-        if decel is not None and not decel > 0.0:
-            return bad_operand(4)
-        if decel_jerk is not None and not decel_jerk > 0.0:
-            return bad_operand(7)
-        h = self._handle()
-        self._post.append(
-            lambda ev: self._apply_stop(h, axis, StopType(stop_type), decel, decel_jerk, 0, ev)
-        )
-        if stop_type in (StopType.ALL, StopType.TIME_CAM):
-            self._cam_claim.discard(axis)
-        return StartResult(handle=h)
-
-    def stop_group(self) -> StartResult:
-        """MGS (programmed): stop all motion of every axis with its configured decel."""
-        h = self._handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            gs = _GroupStop(h)
-            self._group_stops[h] = gs
-            for axis in range(len(self.axes)):
-                sh = self._handle()
-                gs.members.add(sh)
-                self._apply_stop(sh, axis, StopType.ALL, None, None, h, ev)
-            if h in self._group_stops and not gs.members:
-                ev.append((h, EventKind.COMPLETE, -1))
-                del self._group_stops[h]
-
-        self._post.append(apply)
-        self._cam_claim.clear()
-        return StartResult(handle=h)
-
-    def _apply_stop(
-        self,
-        h: int,
-        axis: int,
-        stop_type: StopType,
-        decel: float | None,
-        decel_jerk: float | None,
-        owner: int,
-        ev: list[tuple[int, EventKind, int]],
-    ) -> None:
-        kinds = {
-            StopType.ALL: {GeneratorKind.MOVE, GeneratorKind.JOG, GeneratorKind.STOP},
-            StopType.MOVE: {GeneratorKind.MOVE},
-            StopType.JOG: {GeneratorKind.JOG},
-        }.get(stop_type, set())
-        v0 = 0.0
-        for g in [g for g in self._gens if g.axis == axis and g.kind in kinds]:
-            v0 += g.v
-            self._end_gen(g, EventKind.ENDED, ev)
-        if stop_type in (StopType.ALL, StopType.TIME_CAM):
-            cams = self._cams.on_axis(axis)
-            for c in cams:
-                v0 += c.v
-                ev.append((c.handle, EventKind.ENDED, axis))
-            self._cams.remove(cams)
-            self._drop_pending(axis, ev)
-        if stop_type in (StopType.ALL, StopType.GEAR):
-            v0 += self._end_gears(axis, ev)
-        if stop_type in (StopType.ALL, StopType.HOME):
-            self._end_homing(axis, ev)
-        if stop_type == StopType.ALL:
-            self._break_links(lambda lk: lk.slave == axis, ev)
-        cfg = self.axes[axis]
-        dec = cfg.max_decel if decel is None else decel
-        jerk = cfg.max_decel_jerk if decel_jerk is None else decel_jerk
-        lim = Limits(0.0, dec, dec, jerk, jerk)
-        gen = ProfileGen(h, GeneratorKind.STOP, axis, plan_stop(v0, lim), owner=owner)
-        self._add_gen(gen, ev)
-
-    def _drop_pending(self, axis: int, ev: list) -> None:
-        cam = self._cams.pending.pop(axis, None)
-        if cam is not None:
-            ev.append((cam.handle, EventKind.ENDED, axis))
-            self._cams.pending_changed()
 
     # -- position redefinition (MRP) and homing (MAH) ------------------------------------
     def redefine_position(
@@ -760,7 +367,7 @@ class MotionGroup:
             return bad_operand(3)
         if not math.isfinite(position):
             return bad_operand(4)
-        h = self._handle()
+        h = self.new_handle()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             base = (
@@ -768,64 +375,24 @@ class MotionGroup:
                 if reference == MasterReference.ACTUAL
                 else self.command_position
             )
-            self._shift_position(axis, position if relative else position - float(base[axis]))
+            self.shift_position(axis, position if relative else position - float(base[axis]))
             ev.append((h, EventKind.COMPLETE, axis))
 
-        self._pre.append(apply)
+        self.before_update(apply)
         return StartResult(handle=h)
 
-    def _shift_position(self, axis: int, delta: float) -> None:
+    def shift_position(self, axis: int, delta: float) -> None:
         """Add delta to the axis's positions; whatever follows this axis as a master keeps
         counting travel, not positions, so its slaves do not see the jump."""
         self.command_position[axis] += delta
         self.actual_position[axis] += delta
         self.shift[axis] += delta
-        self._gears.shift_master(axis, delta)
-        clocks = [g.clock for g in self._gens if g.clock is not None]
-        clocks += [c.clock for c in self._cams.cams if c.clock is not None]
-        for clock in clocks:
-            if clock.master == axis:
-                clock.start = None if clock.start is None else clock.start + delta
-                clock.prev = None if clock.prev is None else clock.prev + delta
+        for ps in self._sets:
+            ps.shift_master(axis, delta)
 
     def home(self, axis: int, mode: int, sequence: int, home_position: float) -> StartResult:
-        """MAH with the axis's homing configuration (see homing.py for what is simulated).
-
-        Immediate homing completes at the next update: the actual position becomes
-        `home_position` (the command keeps the following error); Active mode first ends
-        every motion of the axis. Passive homing that waits for a marker or torque event
-        stays in process until a stop (Home or All), servo off or shutdown ends it.
-        """
-        if mode == HomeMode.ACTIVE and self.shutdown[axis]:  # active homing moves the axis
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        err, waits = homing_error(
-            bool(self.virtual[axis]), bool(self.servo_on[axis]), mode, sequence
-        )
-        if err != MotionError.OK:
-            return StartResult(error=err)
-        if not math.isfinite(home_position):
-            return StartResult(error=MotionError.ILLEGAL_HOMING_CONFIGURATION)
-        h = self._handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            self._end_homing(axis, ev)
-            ev.append((h, EventKind.IN_PROCESS, axis))
-            if waits:
-                self._homing[axis] = h
-                return
-            if mode == HomeMode.ACTIVE:
-                self._kill_axis(axis, ev)
-            self._shift_position(axis, home_position - float(self.actual_position[axis]))
-            self.status["AxisHomedStatus"][axis] = True
-            ev.append((h, EventKind.COMPLETE, axis))
-
-        self._pre.append(apply)
-        return StartResult(handle=h)
-
-    def _end_homing(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
-        h = self._homing.pop(axis, None)
-        if h is not None:
-            ev.append((h, EventKind.ENDED, axis))
+        """MAH with the axis's homing configuration (see homing.home)."""
+        return home(self, self._homing, axis, mode, sequence, home_position)
 
     # -- gearing (MAG) --------------------------------------------------------------------
     def start_gear(
@@ -837,108 +404,10 @@ class MotionGroup:
         reference: int = MasterReference.COMMAND,
         clutch_accel: float = math.inf,
     ) -> StartResult:
-        """MAG: from the next update the slave adds ratio x the master's travel; a gear
-        already on the slave is replaced, its velocity carried into the clutch ramp.
-        `ratio` is unsigned by direction (Same +1, Opposite -1, Reverse / Unchanged relative
-        to the slave's present gearing direction); clutch_accel inf: lock at once."""
-        if slave == master:
-            return StartResult(error=MotionError.MASTER_AXIS_CONFLICT)
-        if direction not in (0, 1, 2, 3):
-            return bad_operand(3)
-        if not math.isfinite(ratio):
-            return bad_operand(4)
-        if reference not in MasterReference.__members__.values():
-            return bad_operand(7)
-        if not clutch_accel > 0.0:
-            return bad_operand(10)
-        if self.shutdown[slave]:
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        if not self.servo_on[slave]:
-            return StartResult(error=MotionError.SERVO_OFF_STATE)
-        last = int(self._last_gear_dir[slave])
-        sign = {
-            CamDirection.SAME: 1,
-            CamDirection.OPPOSITE: -1,
-            CamDirection.REVERSE: -last if last else -1,
-            CamDirection.UNCHANGED: last if last else 1,
-        }[CamDirection(direction)]
-        self._last_gear_dir[slave] = sign
-        ref = self._effective_reference(master, MasterReference(reference))
-        h = self._handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            v0 = self._end_gears(slave, ev)
-            if ref == MasterReference.ACTUAL:
-                mpos, mvel = self.actual_position[master], self.actual_velocity[master]
-            else:
-                mpos, mvel = self.command_position[master], self.command_velocity[master]
-            self._gears.add(
-                h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0
-            )
-            self._levels_dirty = True
-            ev.append((h, EventKind.IN_PROCESS, slave))
-
-        self._post.append(apply)
-        return StartResult(handle=h)
-
-    def _end_gears(self, slave: int, ev: list[tuple[int, EventKind, int]]) -> float:
-        """End the gearing of a slave; returns the velocity it contributed (for hand-overs)."""
-        v0 = 0.0
-        for h, _, v in self._gears.remove(self._gears.rows_on(slave)):
-            v0 += v
-            ev.append((h, EventKind.ENDED, slave))
-            self._levels_dirty = True
-        return v0
-
-    # -- dynamics changes (MCD) ---------------------------------------------------------
-    def change_dynamics(
-        self,
-        axis: int,
-        kind: GeneratorKind,
-        speed: float | None = None,
-        accel: float | None = None,
-        decel: float | None = None,
-        accel_jerk: float | None = None,
-        decel_jerk: float | None = None,
-    ) -> StartResult:
-        """MCD: the running move or jog of the axis is planned again at the next update from
-        its present velocity with the changed limits (None: unchanged); a move keeps its end
-        point. Jerks only matter for S-curve motion. Nothing running: no effect."""
-        first = 4  # faceplate index of Speed; rates follow every second operand
-        for value, index, ok in (
-            (speed, first, lambda x: math.isfinite(x) and x >= 0.0),
-            (accel, first + 2, lambda x: x > 0.0),
-            (decel, first + 4, lambda x: x > 0.0),
-            (accel_jerk, first + 6, lambda x: x > 0.0),
-            (decel_jerk, first + 8, lambda x: x > 0.0),
-        ):
-            if value is not None and not ok(value):
-                return bad_operand(index)
-        h = self._handle()
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            for g in [g for g in self._gens if g.axis == axis and g.kind == kind]:
-                old = g.limits
-                if old is None:
-                    continue
-                s_curve = not (math.isinf(old.accel_jerk) and math.isinf(old.decel_jerk))
-                lim = replace(
-                    old,
-                    speed=old.speed if speed is None else speed,
-                    accel=old.accel if accel is None else accel,
-                    decel=old.decel if decel is None else decel,
-                    accel_jerk=old.accel_jerk if accel_jerk is None or not s_curve else accel_jerk,
-                    decel_jerk=old.decel_jerk if decel_jerk is None or not s_curve else decel_jerk,
-                )
-                v0 = g.v_native
-                if kind == GeneratorKind.JOG:
-                    prof = plan_jog(g.direction * lim.speed, lim, v0)
-                else:
-                    prof = plan_move(g.goal - g.last_p, lim, v0)
-                g.replan(prof, lim)
-
-        self._post.append(apply)
-        return StartResult(handle=h)
+        """MAG (see gear.start_gear)."""
+        return start_gear(
+            self, self._gears, slave, master, direction, ratio, reference, clutch_accel
+        )
 
     # -- time cams -----------------------------------------------------------------------
     def start_time_cam(
@@ -954,97 +423,18 @@ class MotionGroup:
         lock_direction: int = LockDirection.NONE,
         instruction_mode: int = InstructionMode.TIME_DRIVEN,
     ) -> StartResult:
-        """MATC; profile None means not calculated (ERR 32)."""
-        if direction not in (0, 1, 2, 3):
-            return bad_operand(2)
-        if profile is None:
-            return StartResult(error=MotionError.CAM_PROFILE_NOT_CALCULATED)
-        if not math.isfinite(distance_scaling):
-            return bad_operand(4)
-        if not (math.isfinite(time_scaling) and time_scaling > 0.0):
-            return bad_operand(5)
-        if execution_mode not in (0, 1):
-            return bad_operand(6)
-        if execution_schedule not in (0, 1):
-            return bad_operand(7)
-        if not math.isfinite(lock_position):
-            return bad_operand(8)
-        if lock_direction not in (0, 1, 2, 3, 4):
-            return bad_operand(9)
-        if instruction_mode not in (0, 1):
-            return bad_operand(10)
-        pending = execution_schedule == ExecutionSchedule.PENDING
-        master_driven = instruction_mode == InstructionMode.MASTER_DRIVEN
-        if pending and lock_direction in (
-            LockDirection.POSITION_FORWARD,
-            LockDirection.POSITION_REVERSE,
-        ):
-            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
-        if not master_driven and lock_direction != LockDirection.NONE and not pending:
-            return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
-        if not pending and axis in self._cam_claim:
-            return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
-        if pending and axis in self._cam_claim and self._claim_mode.get(axis) != master_driven:
-            # a pending cam must be in the mode of the active one (MATC seed)
-            return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
-        if self.shutdown[axis]:
-            return StartResult(error=MotionError.SHUTDOWN_STATE)
-        if not self.servo_on[axis]:
-            return StartResult(error=MotionError.SERVO_OFF_STATE)
-        if master_driven and not pending and self._find_link(axis, MotionType.TIME_CAM) is None:
-            return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
-        last = int(self._last_cam_dir[axis])
-        sign = {
-            CamDirection.SAME: 1,
-            CamDirection.OPPOSITE: -1,
-            CamDirection.REVERSE: -last if last else -1,
-            CamDirection.UNCHANGED: last if last else 1,
-        }[CamDirection(direction)]
-        self._last_cam_dir[axis] = sign
-        h = self._handle()
-        cam = TimeCam(
-            h, axis, profile, sign * distance_scaling, time_scaling, ExecutionMode(execution_mode)
-        )
-        if pending:
-
-            def apply_pending(ev: list[tuple[int, EventKind, int]]) -> None:
-                # a pending cam runs in the mode (and with the master) of the active cam
-                self._drop_pending(axis, ev)
-                self._cams.pending[axis] = cam
-                self._cams.pending_changed()
-
-            self._post.append(apply_pending)
-            return StartResult(handle=h)
-
-        self._cam_claim.add(axis)
-        self._claim_mode[axis] = master_driven
-
-        def apply(ev: list[tuple[int, EventKind, int]]) -> None:
-            if master_driven:
-                link = self._take_link(axis, MotionType.TIME_CAM, ev)
-                assert link is not None
-                cam.clock = self._master_clock(link, LockDirection(lock_direction), lock_position)
-                cam.link = link.handle
-                pos, _ = self._master_state(cam.clock)
-                cam.raw = cam.clock.advance(pos)
-                cam.offset = cam.raw
-                ev.append((link.handle, EventKind.ACTIVE, axis))
-            p, v, _a = profile.evaluate(profile.start)
-            cam.v = cam.gain * float(v) / time_scaling if cam.clock is None else 0.0
-            self._cams.add(cam)
-            self._levels_dirty = True
-            ev.append((h, EventKind.IN_PROCESS, axis))
-
-        self._post.append(apply)
-        return StartResult(handle=h)
+        """MATC; profile None means not calculated (ERR 32). See timecam.start_time_cam."""
+        return start_time_cam(
+            self, self._cams, axis, profile, direction, distance_scaling, time_scaling,
+            execution_mode, execution_schedule, lock_position, lock_direction,
+            instruction_mode,
+        )  # fmt: skip
 
     # -- the update ------------------------------------------------------------------------
     def _compute_levels(self) -> None:
         """Masters before slaves: level(slave) = level(master) + 1 (cycles are capped)."""
         n = len(self.axes)
-        edges = [(g.axis, g.clock.master) for g in self._gens if g.clock is not None]
-        edges += [(c.axis, c.clock.master) for c in self._cams.cams if c.clock is not None]
-        edges += self._gears.edges()
+        edges = [e for ps in self._sets for e in ps.edges()]
         level = np.zeros(n, dtype=np.intp)
         for _ in range(n):
             changed = False
@@ -1070,52 +460,23 @@ class MotionGroup:
             self._compute_levels()
         n = len(self.axes)
         cup = self.cup
-        cams = self._cams
-        cams.begin_update()
+        sets = self._sets
+        for ps in sets:
+            ps.begin_update()
         prev_actual = self.actual_position.copy()
+        positions = (self.actual_position, self.command_position)
+        velocities = (self.actual_velocity, self.command_velocity)
+        single = self._max_level == 0
         for lvl in range(self._max_level + 1):
-            single = self._max_level == 0
-            ax: list[int] = []
-            dp: list[float] = []
-            vv: list[float] = []
-            aa: list[float] = []
-            for g in list(self._gens):
-                if not single and self._level[g.axis] != lvl:
-                    continue
-                if g.clock is None:
-                    d = g.step(cup, 0.0, 0.0)
-                else:
-                    pos, mvel = self._master_state(g.clock)
-                    d = g.step(cup, pos, mvel)
-                ax.append(g.axis)
-                dp.append(d)
-                vv.append(g.v)
-                aa.append(g.a)
-                ph = g.current_phase()
-                if ph != g.phase:
-                    g.phase = ph
-                    ev.append((g.handle, ph, g.axis))
-                if g.kind != GeneratorKind.JOG and g.finished:
-                    self._end_gen(g, EventKind.COMPLETE, ev)
-            cs = cams.step(
-                cup,
-                None if single else (self._level, lvl),
-                (self.actual_position, self.command_position),
-                (self.actual_velocity, self.command_velocity),
-                ev,
-            )
-            gs = self._gears.step(
-                cup,
-                None if single else (self._level, lvl),
-                (self.actual_position, self.command_position),
-                (self.actual_velocity, self.command_velocity),
-            )
+            sel = None if single else (self._level, lvl)
+            parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
+            parts = [c for c in parts if len(c.axis)]
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
-            if ax or len(cs.axis) or len(gs.axis):
-                axes = np.concatenate((np.asarray(ax, dtype=np.intp), cs.axis, gs.axis))
-                dpos = np.bincount(axes, np.concatenate((dp, cs.dpos, gs.dpos)), n)
-                vel = np.bincount(axes, np.concatenate((vv, cs.vel, gs.vel)), n)
-                acc = np.bincount(axes, np.concatenate((aa, cs.acc, gs.acc)), n)
+            if parts:
+                axes = np.concatenate([c.axis for c in parts])
+                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
+                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
+                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]
@@ -1124,21 +485,15 @@ class MotionGroup:
                 self.command_acceleration[idx] = 0.0
             servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
             self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
-        cams.end_update()
-        self.watch.check(self.actual_position, ev)
+        for ps in sets:
+            ps.end_update(self.actual_position, ev)
         post, self._post = self._post, []
         for f in post:
             f(ev)
-        if post:  # generators started at this update report their start velocity now
-            vel, acc = self._cams.velocity_sums(n)
-            gv, ga = self._gears.velocity_sums(n)
-            vel += gv
-            acc += ga
-            for g in self._gens:
-                vel[g.axis] += g.v
-                acc[g.axis] += g.a
-            self.command_velocity[:] = vel
-            self.command_acceleration[:] = acc
+        if post:  # processes started at this update report their start velocity now
+            sums = [ps.velocity_sums(n) for ps in sets]
+            self.command_velocity[:] = np.sum([v_ for v_, _ in sums], axis=0)
+            self.command_acceleration[:] = np.sum([a_ for _, a_ in sums], axis=0)
         self.updates += 1
         self._update_status()
         return [MotionEvent(h, k, a) for h, k, a in ev]
@@ -1150,51 +505,8 @@ class MotionGroup:
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        for name, kind in (
-            ("MoveStatus", GeneratorKind.MOVE),
-            ("JogStatus", GeneratorKind.JOG),
-            ("StoppingStatus", GeneratorKind.STOP),
-        ):
-            arr = np.zeros(n, dtype=bool)
-            arr[[g.axis for g in self._gens if g.kind == kind]] = True
-            st[name] = arr
-        tc = np.zeros(n, dtype=bool)
-        tc[self._cams.active_axes()] = True
-        st["TimeCamStatus"] = tc
-        tp = np.zeros(n, dtype=bool)
-        tp[list(self._cams.pending)] = True
-        st["TimeCamPendingStatus"] = tp
-        tl = np.zeros(n, dtype=bool)
-        tl[self._cams.locked_axes()] = True
-        st["TimeCamLockStatus"] = tl
-        # master-driven moves and jogs with a lock direction: following their master
-        for name, kind in (
-            ("MoveLockStatus", GeneratorKind.MOVE),
-            ("JogLockStatus", GeneratorKind.JOG),
-        ):
-            arr = np.zeros(n, dtype=bool)
-            arr[[
-                g.axis for g in self._gens
-                if g.kind == kind and g.clock is not None
-                and g.clock.lock_direction != LockDirection.NONE and g.clock.locked
-            ]] = True  # fmt: skip
-            st[name] = arr
-        cm = np.zeros(n, dtype=bool)
-        cm[[lk.slave for lk in self._links_active.values()]] = True
-        cm[[lk.slave for lk in self._links_pending.values()]] = True
-        st["CoordinatedMotionStatus"] = cm
-        gear = np.zeros(n, dtype=bool)
-        gear[self._gears.slave] = True
-        st["GearingStatus"] = gear
-        lock = np.zeros(n, dtype=bool)
-        lock[self._gears.slave[self._gears.locked]] = True
-        st["GearingLockStatus"] = lock
-        homing = np.zeros(n, dtype=bool)
-        homing[list(self._homing)] = True
-        st["HomingStatus"] = homing
+        for ps in self._sets:
+            st.update(ps.status(n))
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()
-        # every queued request has been applied: the claim is exactly the running cams
-        self._cam_claim = set(self._cams.active_axes().tolist())
-        self._claim_mode = {c.axis: c.clock is not None for c in self._cams.cams}

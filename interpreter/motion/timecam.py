@@ -4,12 +4,35 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from interpreter.motion.cam import CamProfile, ProfileBank
 from interpreter.motion.clock import MasterClock
-from interpreter.motion.enums import EventKind, ExecutionMode, LockDirection
+from interpreter.motion.enums import (
+    CamDirection,
+    EventKind,
+    ExecutionMode,
+    ExecutionSchedule,
+    InstructionMode,
+    LockDirection,
+    MotionType,
+    StopType,
+)
+from interpreter.motion.errors import MotionError, StartResult, bad_operand
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
+
+if TYPE_CHECKING:  # the group calls start_time_cam; only the annotation needs the class
+    from interpreter.motion.group import MotionGroup
 
 
 @dataclass(slots=True)
@@ -37,27 +60,20 @@ class TimeCam:
         return LockDirection.NONE if self.clock is None else self.clock.lock_direction
 
 
-@dataclass(slots=True)
-class CamStep:
-    """Per-cam results of one update for the group's bookkeeping."""
-
-    axis: np.ndarray
-    dpos: np.ndarray
-    vel: np.ndarray
-    acc: np.ndarray
-
-
-_EMPTY = CamStep(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
-
-
 class TimeCamSet:
     """Active time cams in struct-of-arrays form; rows are rebuilt when the set changes."""
 
     def __init__(self) -> None:
         self.cams: list[TimeCam] = []
         self.pending: dict[int, TimeCam] = {}
+        self.claim: set[int] = set()  # axes with an active or queued immediate cam
+        self.claim_mode: dict[int, bool] = {}  # claimed axis -> its cam is master driven
+        self.last_dir: dict[int, int] = {}  # axis -> +1 same, -1 opposite (absent: none yet)
         self._dirty = True
         self._bank: ProfileBank | None = None
+        # status arrays while the cams are unchanged (shared with the group: read-only)
+        self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
+        self._claim_touched = False  # a stop freed a claim since the last status
 
     # -- membership ---------------------------------------------------------------
     def add(self, cam: TimeCam) -> None:
@@ -89,6 +105,7 @@ class TimeCamSet:
             c.a = float(self._a[k])
 
     def _rebuild(self) -> None:
+        self._status_cache = None
         cams = self.cams
         profiles: list[CamProfile] = []
         index: dict[int, int] = {}
@@ -117,8 +134,52 @@ class TimeCamSet:
         self._span = np.array([p.span for p in profiles], dtype=f)[self._prof]
         self._p0 = np.array([p.p_start for p in profiles], dtype=f)[self._prof]
         self._net = np.array([p.net for p in profiles], dtype=f)[self._prof]
+        bank = self._bank
+        self._row_base = bank.base[self._prof]
+        self._row_first = bank.first_seg[self._prof]
+        self._row_last = bank.last_seg[self._prof]
         self._has_pending = np.array([c.axis in self.pending for c in cams], dtype=bool)
         self._dirty = False
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        """MAS All / Time Cam (or MGS: axis None) frees the axis for an immediate cam in
+        the same scan; the cam itself ends at the next update (end_axis)."""
+        if axis is None:
+            self.claim.clear()
+        elif stop_type in (StopType.ALL, StopType.TIME_CAM):
+            self.claim.discard(axis)
+        self._claim_touched = True
+
+    def busy(self, axis: int) -> bool:
+        return bool(self.on_axis(axis))
+
+    def links_in_use(self) -> set[int]:
+        return {c.link for c in self.cams if c.link}
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """Stops (All, Time Cam), merges and kills end the axis's cams; stops and kills also
+        drop its pending cam; merges and kills free the axis for an immediate cam at once
+        (a stop frees it when it executes)."""
+        if reason not in (Ending.KILL, Ending.MERGE_ALL, StopType.ALL, StopType.TIME_CAM):
+            return 0.0, False
+        cams = self.on_axis(axis)
+        v = 0.0
+        for c in cams:
+            v += c.v
+            events.append((c.handle, EventKind.ENDED, axis))
+        self.remove(cams)
+        if reason != Ending.MERGE_ALL:
+            self.drop_pending(axis, events)
+        if reason in (Ending.KILL, Ending.MERGE_ALL):
+            self.claim.discard(axis)
+        return v, bool(cams)
+
+    def drop_pending(self, axis: int, ev: Events) -> None:
+        """A pending cam of the axis is dropped (replaced, stopped): it ends, never counted."""
+        cam = self.pending.pop(axis, None)
+        if cam is not None:
+            ev.append((cam.handle, EventKind.ENDED, axis))
+            self.pending_changed()
 
     def pending_changed(self) -> None:
         self._sync_out()
@@ -128,36 +189,38 @@ class TimeCamSet:
     def step(
         self,
         cup: float,
-        level_sel: tuple[np.ndarray, int] | None,
-        positions: tuple[np.ndarray, np.ndarray],
-        velocities: tuple[np.ndarray, np.ndarray],
-        events: list[tuple[int, EventKind, int]],
-    ) -> CamStep:
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
         """Advance the cams (all, or those whose axis has the given level) one update."""
         if not self.cams:
-            return _EMPTY
+            return EMPTY
         if self._dirty:
             self._rebuild()
+        sel: slice | np.ndarray
         if level_sel is None:
-            sel = self._all_rows
+            sel = slice(None)  # every row: slices, no copies
         else:
             sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
             if len(sel) == 0:
-                return _EMPTY
-        in_sel = set(sel.tolist()) if level_sel is not None else None
+                return EMPTY
         # a cam starts with count 0 at the update that applies it; then one more per update
-        cnt = self._count[sel] + 1
-        self._count[sel] = cnt
-        self._raw[sel] = cnt * cup
-        mvel = np.ones(len(self.cams))
-        for k in self._md_rows:
-            if in_sel is not None and k not in in_sel:
-                continue
-            c = self.cams[k]
-            assert c.clock is not None
-            ref, m = int(c.clock.reference), c.clock.master  # 0 actual, 1 command
-            self._raw[k] = c.clock.advance(float(positions[ref][m]))
-            mvel[k] = velocities[ref][m]
+        self._count[sel] += 1
+        self._raw[sel] = self._count[sel] * cup
+        mvel: np.ndarray | None = None
+        if self._md_rows:
+            in_sel = set(self._all_rows[sel].tolist())
+            mvel = np.ones(len(self.cams))
+            for k in self._md_rows:
+                if k not in in_sel:
+                    continue
+                c = self.cams[k]
+                assert c.clock is not None
+                ref, m = int(c.clock.reference), c.clock.master  # 0 actual, 1 command
+                self._raw[k] = c.clock.advance(float(positions[ref][m]))
+                mvel[k] = velocities[ref][m]
         ts = self._ts[sel]
         span = self._span[sel]
         x = (self._raw[sel] - self._offset[sel]) / ts
@@ -171,17 +234,23 @@ class TimeCamSet:
             self._offset[sel] += k_pass * span * ts
             self._passes[sel] += k_pass
             x = x - k_pass * span
-        local = np.clip(x, 0.0, span)
+        local = np.minimum(np.maximum(x, 0.0), span)
         assert self._bank is not None
-        p, v, a = self._bank.evaluate(self._prof[sel], local)
+        p, v, a = self._bank.evaluate_rows(
+            self._row_base[sel], self._row_first[sel], self._row_last[sel], local
+        )
         gain = self._gain[sel]
         passes = self._passes[sel]
         contrib = gain * (p - self._p0[sel] + passes * self._net[sel])
         held = (x < 0.0) & ~cont  # before the start of a Once cam (master backing up)
         contrib = np.where(complete, gain * (self._net[sel] * (passes + 1.0)), contrib)
-        mv = mvel[sel]
-        vel = np.where(complete | held, 0.0, gain * v / ts * mv)
-        acc = np.where(complete | held, 0.0, gain * a / (ts * ts) * mv * mv)
+        mv = np.ones(len(x)) if mvel is None else mvel[sel]
+        if mvel is not None:
+            v = v * mv
+            a = a * mv * mv
+        stopped = complete | held
+        vel = np.where(stopped, 0.0, gain * v / ts)
+        acc = np.where(stopped, 0.0, gain * a / (ts * ts))
         dpos = contrib - self._last[sel]
         self._last[sel] = contrib
         self._v[sel] = vel
@@ -189,12 +258,13 @@ class TimeCamSet:
         axis = self._axis[sel]
         if complete.any() or handover.any():
             dpos = dpos.copy()
+            rows = self._all_rows[sel]
             for j in np.flatnonzero(complete | handover):
-                row = int(sel[j])
+                row = int(rows[j])
                 dpos[j] += self._finish(
                     row, bool(handover[j]), events, vel, acc, int(j), float(mv[j])
                 )
-        return CamStep(axis, dpos, vel, acc)
+        return Contribution(axis, dpos, vel, acc)
 
     def _finish(
         self,
@@ -253,7 +323,7 @@ class TimeCamSet:
         self._finished: list[TimeCam] = []
         self._started: list[TimeCam] = []
 
-    def end_update(self) -> None:
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
         """Apply the removals and hand-overs collected during step()."""
         if self._finished or self._started:
             self._sync_out()
@@ -278,6 +348,37 @@ class TimeCamSet:
             self._rebuild()
         return self._axis
 
+    def edges(self) -> list[tuple[int, int]]:
+        return [(c.axis, c.clock.master) for c in self.cams if c.clock is not None]
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        for c in self.cams:
+            if c.clock is not None:
+                c.clock.shift(axis, delta)
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """TimeCamStatus (active), TimeCamPendingStatus, TimeCamLockStatus (following a
+        master with a lock direction)."""
+        if self._dirty:
+            self._rebuild()
+        cache = self._status_cache
+        if cache is not None and cache[0] == n and not self._md_rows and not self._claim_touched:
+            return cache[1]  # same cams, no master-driven lock state: nothing changed
+        # asked at the end of an update, when every queued request has been applied: the
+        # claim on an axis is exactly its running cam
+        self.claim = set(self.active_axes().tolist())
+        self.claim_mode = {c.axis: c.clock is not None for c in self.cams}
+        self._claim_touched = False
+        tc = np.zeros(n, dtype=bool)
+        tc[self.active_axes()] = True
+        tp = np.zeros(n, dtype=bool)
+        tp[list(self.pending)] = True
+        tl = np.zeros(n, dtype=bool)
+        tl[self.locked_axes()] = True
+        out = {"TimeCamStatus": tc, "TimeCamPendingStatus": tp, "TimeCamLockStatus": tl}
+        self._status_cache = (n, out)
+        return out
+
     def locked_axes(self) -> list[int]:
         return [
             c.axis
@@ -286,3 +387,105 @@ class TimeCamSet:
             and c.clock.lock_direction != LockDirection.NONE
             and c.clock.locked
         ]
+
+
+def start_time_cam(
+    group: MotionGroup,
+    cams: TimeCamSet,
+    axis: int,
+    profile: CamProfile | None,
+    direction: int = CamDirection.SAME,
+    distance_scaling: float = 1.0,
+    time_scaling: float = 1.0,
+    execution_mode: int = ExecutionMode.ONCE,
+    execution_schedule: int = ExecutionSchedule.IMMEDIATE,
+    lock_position: float = 0.0,
+    lock_direction: int = LockDirection.NONE,
+    instruction_mode: int = InstructionMode.TIME_DRIVEN,
+) -> StartResult:
+    """MATC on the group's axis; profile None means not calculated (ERR 32).
+
+    Validates at once (decision 0100: ERR/EXERR from the start call) and queues the
+    start for the end of the next update."""
+    if direction not in (0, 1, 2, 3):
+        return bad_operand(2)
+    if profile is None:
+        return StartResult(error=MotionError.CAM_PROFILE_NOT_CALCULATED)
+    if not math.isfinite(distance_scaling):
+        return bad_operand(4)
+    if not (math.isfinite(time_scaling) and time_scaling > 0.0):
+        return bad_operand(5)
+    if execution_mode not in (0, 1):
+        return bad_operand(6)
+    if execution_schedule not in (0, 1):
+        return bad_operand(7)
+    if not math.isfinite(lock_position):
+        return bad_operand(8)
+    if lock_direction not in (0, 1, 2, 3, 4):
+        return bad_operand(9)
+    if instruction_mode not in (0, 1):
+        return bad_operand(10)
+    pending = execution_schedule == ExecutionSchedule.PENDING
+    master_driven = instruction_mode == InstructionMode.MASTER_DRIVEN
+    if pending and lock_direction in (
+        LockDirection.POSITION_FORWARD,
+        LockDirection.POSITION_REVERSE,
+    ):
+        return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+    if not master_driven and lock_direction != LockDirection.NONE and not pending:
+        return StartResult(error=MotionError.LOCK_DIRECTION_CONFLICT)
+    if not pending and axis in cams.claim:
+        return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
+    if pending and axis in cams.claim and cams.claim_mode.get(axis) != master_driven:
+        # a pending cam must be in the mode of the active one (MATC seed)
+        return StartResult(error=MotionError.MDSC_INVALID_MODE_OR_MASTER_CHANGE)
+    if group.shutdown[axis]:
+        return StartResult(error=MotionError.SHUTDOWN_STATE)
+    if not group.servo_on[axis]:
+        return StartResult(error=MotionError.SERVO_OFF_STATE)
+    if master_driven and not pending and group.find_link(axis, MotionType.TIME_CAM) is None:
+        return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
+    last = cams.last_dir.get(axis, 0)
+    sign = {
+        CamDirection.SAME: 1,
+        CamDirection.OPPOSITE: -1,
+        CamDirection.REVERSE: -last if last else -1,
+        CamDirection.UNCHANGED: last if last else 1,
+    }[CamDirection(direction)]
+    cams.last_dir[axis] = sign
+    h = group.new_handle()
+    cam = TimeCam(
+        h, axis, profile, sign * distance_scaling, time_scaling, ExecutionMode(execution_mode)
+    )
+    if pending:
+
+        def apply_pending(ev: list[tuple[int, EventKind, int]]) -> None:
+            # a pending cam runs in the mode (and with the master) of the active cam
+            cams.drop_pending(axis, ev)
+            cams.pending[axis] = cam
+            cams.pending_changed()
+
+        group.after_update(apply_pending)
+        return StartResult(handle=h)
+
+    cams.claim.add(axis)
+    cams.claim_mode[axis] = master_driven
+
+    def apply(ev: list[tuple[int, EventKind, int]]) -> None:
+        if master_driven:
+            link = group.take_link(axis, MotionType.TIME_CAM, ev)
+            assert link is not None
+            cam.clock = group.master_clock(link, LockDirection(lock_direction), lock_position)
+            cam.link = link.handle
+            pos, _ = group.master_state(cam.clock)
+            cam.raw = cam.clock.advance(pos)
+            cam.offset = cam.raw
+            ev.append((link.handle, EventKind.ACTIVE, axis))
+        p, v, _a = profile.evaluate(profile.start)
+        cam.v = cam.gain * float(v) / time_scaling if cam.clock is None else 0.0
+        cams.add(cam)
+        group.levels_changed()
+        ev.append((h, EventKind.IN_PROCESS, axis))
+
+    group.after_update(apply)
+    return StartResult(handle=h)

@@ -18,7 +18,7 @@ from ..vm.context import DEFAULT_WATCHDOG, ExecContext, MajorFault
 from ..vm.values import set_string, string_text
 from .aoi import AoiRoutines, make_impls
 from .loader import InputError, Loaded
-from .motion import MotionRuntime
+from .motion import MotionRuntime, watched_members
 from .storage import allocate
 from .tasks import Schedule
 
@@ -254,6 +254,8 @@ class Controller:
         del self.analysis.diags[before:]
         if t is None or new:
             raise WatchError(f"'{text}': {new[0].message if new else 'not a tag reference'}")
+        if self.ctx.motion is not None:  # axis attributes are written when somebody reads them
+            self.ctx.motion.demand(watched_members(expr, t))
         rc = RoutineCompiler(
             self.model, self.analysis, n.Routine("watch", "st", "<watch>"), self.sites
         )

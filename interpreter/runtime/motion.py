@@ -37,9 +37,6 @@ from .motion_layout import (
 DEFAULT_CUP_MS = 2.0
 _MG = struct_type("MOTION_GROUP").index
 
-# instructions whose motion reports completion with PC (MAJ never completes; MDAC has no PC)
-_PC_KINDS = frozenset({"MAM", "MAS", "MGS", "MATC", "MAH", "MAW"})
-
 # axis members written after every planner update (REAL) ...
 _REALS = (
     "ActualPosition", "CommandPosition", "ActualVelocity", "CommandVelocity",
@@ -61,11 +58,18 @@ class Axis:
 
 @dataclass(eq=False, slots=True)
 class Tracked:
-    """A motion process started by an instruction, whose events drive its control bits."""
+    """A motion process started by an instruction, whose events drive its control bits.
 
-    kind: str  # instruction name: MAM, MAJ, MAS, MGS, MATC, MDAC
+    What its end means is said by the process itself, not by the instruction's name
+    (docs/decisions/0104-motion-binding.md): `pc` -- completion sets PC (MAJ never
+    completes, MAG and MAR only end); `link` -- a master link (MDAC): IP until the link
+    ends, AC while a motion driven by it runs, no ACCEL/DECEL/PC.
+    """
+
     control: list  # the MOTION_INSTRUCTION storage list
-    axis: Axis | None
+    axes: tuple[Axis, ...] = ()  # axes whose Start*Position it sets when it goes in process
+    pc: bool = False
+    link: bool = False
     profile: list | None = None  # CAM_PROFILE element [0] whose Status counts users
     counted: bool = False  # this process holds one count on profile
     on_start: Callable[[Group], None] | None = None
@@ -87,6 +91,9 @@ class Group:
     history: np.ndarray = field(default_factory=lambda: np.zeros((1, 0)))  # ring of positions
     ring_at: int = 0  # row of the latest position in history
     filled: int = 0  # updates recorded (capped at the ring length - 1)
+    actual_accel: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    average_velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    stale: bool = True  # updated since its axis attributes were last written to the tags
 
     @property
     def next_time_ms(self) -> float:
@@ -106,8 +113,14 @@ class MotionRuntime:
         self._profiles: dict[int, tuple[Signature, CamProfile]] = {}
         self._build(model, storage, coarse_update_ms)
         self._init_cam_profiles(model, storage)
+        # Axis attributes are written lazily (decision 0104): every one once now, then only
+        # the members somebody can read -- the program, --watch/--trace -- before each scan.
+        self._demand: frozenset[str] | None = None  # upper-case member names; None: all
         for g in self.groups:
+            if g.axes:  # the AverageVelocity window starts here
+                g.average_velocity = self._average_velocity(g)
             self._write_axes(g)
+        self._demand = program_demand(model) if self.groups else frozenset()
 
     # ------------------------------------------------------------ building
     def _build(self, model: ProgramModel, T: list[object], cli_cup: float | None) -> None:
@@ -208,6 +221,16 @@ class MotionRuntime:
         cfg.max_accel_jerk = _limit(get(v, "MaximumAccelJerk"))
         cfg.max_decel_jerk = _limit(get(v, "MaximumDecelJerk"))
 
+    def demand(self, members: frozenset[str] | None) -> None:
+        """Members (upper case; None: all) that are read from now on, e.g. by a --watch;
+        they are written at once so that the reader sees the present state."""
+        if self._demand is None:
+            return
+        self._demand = None if members is None else self._demand | members
+        for g in self.groups:
+            g.stale = True
+            self._write_axes(g)
+
     # ------------------------------------------------------------ control ownership
     def own(self, ctl: list, g: Group | None = None, handle: int = 0) -> None:
         """The latest execution of an instruction owns its control structure (or none: 0)."""
@@ -258,8 +281,11 @@ class MotionRuntime:
         while True:
             g = min(groups, key=lambda x: x.next_time_ms)
             if g.next_time_ms > now_ms + 1e-6:
-                return
+                break
             self._update(g)
+        for g in groups:  # the scan may read them: once per scan, not once per update
+            if g.stale:
+                self._write_axes(g)
 
     def _update(self, g: Group) -> None:
         events = g.core.update()
@@ -268,7 +294,7 @@ class MotionRuntime:
         for ev in events:
             self._event(g, ev)
         self._active_bits(g)
-        self._write_axes(g)
+        self._record(g)
         after, g.after = g.after, []
         for fn in after:
             fn()
@@ -281,8 +307,8 @@ class MotionRuntime:
         own = self.owns(ctl, g, ev.handle)
         k = ev.kind
         if k is EventKind.IN_PROCESS:
-            if tr.axis is not None:
-                self._start_positions(tr.axis)
+            for ax in tr.axes:
+                self._start_positions(ax)
             if tr.on_start is not None:
                 tr.on_start(g)
         elif k is EventKind.PENDING_STARTED:
@@ -293,8 +319,8 @@ class MotionRuntime:
             if tr.on_end is not None:
                 tr.on_end(g, k is EventKind.COMPLETE)
             if own:
-                pc = 1 if k is EventKind.COMPLETE and tr.kind in _PC_KINDS else 0
-                if tr.kind == "MDAC":
+                pc = 1 if k is EventKind.COMPLETE and tr.pc else 0
+                if tr.link:
                     set_bits(ctl, IP=0, AC=0)
                 else:
                     set_bits(ctl, IP=0, ACCEL=0, DECEL=0, PC=pc)
@@ -319,7 +345,7 @@ class MotionRuntime:
         """MDAC .AC follows whether a master-driven motion of the link is running."""
         in_use = None
         for h, tr in g.tracked.items():
-            if tr.kind == "MDAC" and tr.control[AC] and self.owns(tr.control, g, h):
+            if tr.link and tr.control[AC] and self.owns(tr.control, g, h):
                 if in_use is None:
                     in_use = g.core.links_in_use()
                 if h not in in_use:
@@ -331,47 +357,81 @@ class MotionRuntime:
         v[ix["STARTACTUALPOSITION"]] = f32(float(core.actual_position[i]))
 
     # ------------------------------------------------------------ axis attributes
-    def _write_axes(self, g: Group) -> None:
-        """Axis attributes into the axis tags (REAL members rounded to float32).
-
-        The values of all axes are computed as arrays, in member order; each axis then takes
-        two slice stores (the REAL block and the status block), the only per-axis cost.
-        """
-        if not g.axes:
-            return
+    def _record(self, g: Group) -> None:
+        """Per-update history the written attributes derive from: actual acceleration (a
+        difference quotient of actual velocity) and, when read, AverageVelocity's window."""
         core = g.core
         av = core.actual_velocity
-        acc = (av - g.prev_vel) / core.cup if core.updates > 1 else np.zeros_like(av)
+        g.actual_accel = (av - g.prev_vel) / core.cup if core.updates > 1 else np.zeros_like(av)
         g.prev_vel = av.copy()
-        reals = np.vstack((
-            core.actual_position, core.command_position, av, core.command_velocity, acc,
-            core.command_acceleration, self._average_velocity(g),
-            core.command_position - core.actual_position,
-        )).astype(np.float32).T.tolist()  # fmt: skip
-        st = core.status
-        n = len(g.axes)
-        servo = core.servo_on.astype(np.int64)
-        drive = servo & ~core.virtual
-        shutdown = core.shutdown.astype(np.int64)
-        sources = {
-            "MOTIONSTATUS": core.motion_status_word().astype(np.int64),
-            "AXISSTATUS": servo | (drive << 1) | (shutdown << 2),
-            "SERVOACTIONSTATUS": servo,
-            "DRIVEENABLESTATUS": drive,
+        if self._demand is None or "AVERAGEVELOCITY" in self._demand:
+            g.average_velocity = self._average_velocity(g)
+        g.stale = True
+
+    def _write_axes(self, g: Group) -> None:
+        """The demanded axis attributes into the axis tags (REAL members rounded to float32).
+
+        The values of all axes are computed as arrays, one column per demanded member; each
+        axis then takes one store per column (or two slice stores when all are demanded).
+        """
+        g.stale = False
+        if not g.axes:
+            return
+        plan = _write_plan(g.axes[0].layout, self._demand)
+        if not plan.real_names and not plan.int_names:
+            return
+        core = g.core
+        n_axes = len(g.axes)
+        if len(g.actual_accel) != n_axes:
+            g.actual_accel = np.zeros(n_axes)
+        if len(g.average_velocity) != n_axes:
+            g.average_velocity = np.zeros(n_axes)
+        columns = {
+            "ACTUALPOSITION": lambda: core.actual_position,
+            "COMMANDPOSITION": lambda: core.command_position,
+            "ACTUALVELOCITY": lambda: core.actual_velocity,
+            "COMMANDVELOCITY": lambda: core.command_velocity,
+            "ACTUALACCELERATION": lambda: g.actual_accel,
+            "COMMANDACCELERATION": lambda: core.command_acceleration,
+            "AVERAGEVELOCITY": lambda: g.average_velocity,
+            "POSITIONERROR": lambda: core.command_position - core.actual_position,
         }
-        zero = np.zeros(n, dtype=np.int64)
-        rows_by_plan: dict[int, list[list[int]]] = {}
+        reals = (
+            np.vstack([columns[m]() for m in plan.real_names]).astype(np.float32).T.tolist()
+            if plan.real_names
+            else None
+        )
+        ints = None
+        if plan.int_names:
+            st = core.status
+            zero = np.zeros(n_axes, dtype=np.int64)
+            servo = core.servo_on.astype(np.int64)
+            drive = servo & ~core.virtual
+            sources = {
+                "MOTIONSTATUS": lambda: core.motion_status_word().astype(np.int64),
+                "AXISSTATUS": lambda: servo | (drive << 1) | (core.shutdown.astype(np.int64) << 2),
+                "SERVOACTIONSTATUS": lambda: servo,
+                "DRIVEENABLESTATUS": lambda: drive,
+            }
+            cols = []
+            for m in plan.int_names:  # status members the core does not simulate stay 0
+                src = sources.get(m)
+                cols.append(src() if src is not None else st.get(_STATUS_KEY.get(m, ""), zero))
+            ints = np.vstack(cols).astype(np.int64).T.tolist()
         for ax in g.axes:
-            plan = _write_plan(ax.layout)
-            rows = rows_by_plan.get(id(plan))
-            if rows is None:  # status members the core does not simulate stay 0
-                cols = [
-                    sources.get(m, st.get(_STATUS_KEY.get(m, ""), zero)) for m in plan.int_names
-                ]
-                rows = rows_by_plan[id(plan)] = np.vstack(cols).astype(np.int64).T.tolist()
             v, i = ax.value, ax.index
-            v[plan.reals] = reals[i]
-            v[plan.ints] = rows[i]
+            if reals is not None:
+                if plan.reals is not None:
+                    v[plan.reals] = reals[i]
+                else:
+                    for at, x in zip(plan.real_at, reals[i], strict=True):
+                        v[at] = x
+            if ints is not None:
+                if plan.ints is not None:
+                    v[plan.ints] = ints[i]
+                else:
+                    for at, x in zip(plan.int_at, ints[i], strict=True):
+                        v[at] = x
 
     def _average_velocity(self, g: Group) -> np.ndarray:
         """Actual travel over each axis's AverageVelocityTimebase, per second."""
@@ -400,16 +460,20 @@ _STATUS_KEY = {name.upper(): name for name in (*STATUS_BITS, "ServoActionStatus"
 
 @dataclass(frozen=True, slots=True)
 class _WritePlan:
-    """Where _write_axes stores: a slice of REAL members (in _REALS order) and a slice of
-    status members (the AxisStatus word through MaximumSpeedExceeded)."""
+    """Where _write_axes stores. All members demanded: a slice of REAL members (in _REALS
+    order) and a slice of status members (the AxisStatus word through
+    MaximumSpeedExceeded); otherwise one position per demanded member."""
 
-    reals: slice
-    ints: slice
-    int_names: tuple[str, ...]  # upper-case member name of each position in `ints`
+    real_names: tuple[str, ...]  # upper-case REAL members written, in _REALS order
+    real_at: tuple[int, ...]
+    int_names: tuple[str, ...]  # upper-case status members written
+    int_at: tuple[int, ...]
+    reals: slice | None = None  # set when every REAL member is written
+    ints: slice | None = None  # set when every status member is written
 
 
 @cache
-def _write_plan(layout: AxisLayout) -> _WritePlan:
+def _write_plan(layout: AxisLayout, demand: frozenset[str] | None) -> _WritePlan:
     ix = layout.index
     names = {i: name for name, i in ix.items()}
     r0 = ix[_REALS[0].upper()]
@@ -419,9 +483,72 @@ def _write_plan(layout: AxisLayout) -> _WritePlan:
     )
     s0, s1 = ix["AXISSTATUS"], ix["MAXIMUMSPEEDEXCEEDED"] + 1
     assert s0 < ix["MOTIONSTATUS"] < s1
-    return _WritePlan(
-        slice(r0, r0 + len(_REALS)), slice(s0, s1), tuple(names[i] for i in range(s0, s1))
-    )
+    all_reals = tuple(m.upper() for m in _REALS)
+    all_ints = tuple(names[i] for i in range(s0, s1))
+    if demand is None:
+        return _WritePlan(
+            all_reals, tuple(range(r0, r0 + len(_REALS))), all_ints, tuple(range(s0, s1)),
+            slice(r0, r0 + len(_REALS)), slice(s0, s1),
+        )  # fmt: skip
+    # a packed BOOL read alone still needs its value; the word needs every bit
+    reals = tuple(m for m in all_reals if m in demand)
+    ints = tuple(m for m in all_ints if m in demand)
+    return _WritePlan(reals, tuple(ix[m] for m in reals), ints, tuple(ix[m] for m in ints))
+
+
+def axis_attributes() -> frozenset[str]:
+    """Upper-case names of the axis members the runtime writes after planner updates."""
+    plan = _write_plan(AxisLayout.of("AXIS_VIRTUAL"), None)
+    return frozenset(plan.real_names + plan.int_names)
+
+
+def program_demand(model: ProgramModel) -> frozenset[str] | None:
+    """Axis attributes the program may read: every member name, GSV attribute name or
+    identifier written anywhere in its routines (an over-approximation that needs no
+    types), and the members aliases point at. None (all) when an alias names a whole axis."""
+    words: set[str] = set()
+    routines = list(model.routines)
+    for aoi in model.aois.values():
+        routines.extend(getattr(aoi, "routines", {}).values())
+    for r in routines:
+        _collect_words((r.body, r.rungs, r.decls), words)
+    for t in model.tags.values():
+        base = t.alias_of
+        if base is not None and is_axis(base.type):
+            if not t.access:
+                return None
+            assert isinstance(base.type, StructType)
+            words.add(base.type.members[t.access[0]][0].upper())
+    return frozenset(words) & axis_attributes()
+
+
+def watched_members(expr: n.Expr, t: object) -> frozenset[str] | None:
+    """Axis attributes a watched reference reads (None: a whole axis, all of them)."""
+    if isinstance(t, StructType) and is_axis(t):
+        return None
+    words: set[str] = set()
+    _collect_words(expr, words)
+    return frozenset(words) & axis_attributes()
+
+
+def _collect_words(node: object, out: set[str]) -> None:
+    """Identifiers and member names anywhere below an AST node (iterative walk)."""
+    stack = [node]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, list | tuple):
+            stack.extend(x)
+        elif isinstance(x, n.Member):
+            out.add(x.name.upper())
+            stack.append(x.base)
+        elif isinstance(x, n.Name):
+            out.add(x.ident.upper().rsplit(".", 1)[-1])
+        elif isinstance(x, str):
+            out.add(x.upper())
+        elif hasattr(x, "__dataclass_fields__"):
+            for f in x.__dataclass_fields__:
+                if f != "span" and not f.endswith("_span"):
+                    stack.append(getattr(x, f))
 
 
 def _limit(x: float) -> float:
