@@ -55,12 +55,9 @@ def _error(name: str) -> int:
 
 @dataclass(slots=True)
 class _Direct:
-    """Axes under direct drive control (MDO) of one runtime, and the groups watched."""
+    """Per runtime: how many requests have ended direct drive on each axis (an MDO whose
+    drive message is still under way when one of them executes does not enable the drive)."""
 
-    axes: dict[int, Axis] = field(default_factory=dict)
-    watched: set[int] = field(default_factory=set)
-    # requests that end direct drive, per axis: an MDO whose drive message is still under
-    # way when one of them executes does not enable the drive any more
     ends: dict[int, int] = field(default_factory=dict)
 
 
@@ -75,36 +72,18 @@ def _state(rt: MotionRuntime) -> _Direct:
 
 
 def end_direct_drive(rt: MotionRuntime, ax: Axis) -> None:
-    """MDF, MSO, MSF and a shutdown end the direct drive state of MDO.
-
-    The drive bits then follow the servo state again from the next planner update on (off,
-    or on with the loop after MSO), as they do after MSF or MSO on any drive axis.
-    """
+    """MDF, MSO, MSF and a shutdown end the direct drive state of MDO (the core clears it
+    for MSO, MSF and shutdowns too); an MDO still waiting for its drive message then does
+    not enable the drive any more."""
     st = _state(rt)
-    st.axes.pop(id(ax), None)
+    ax.group.core.direct_drive[ax.index] = False
     st.ends[id(ax)] = st.ends.get(id(ax), 0) + 1
 
 
-def _hold(rt: MotionRuntime, ax: Axis) -> None:
-    """Keep DriveEnableStatus on: the planner rewrites the servo state after every update."""
-    st = _state(rt)
-    st.axes[id(ax)] = ax
+def _hold(ax: Axis) -> None:
+    """The drive is enabled under direct control: the axis status shows it from now on."""
+    ax.group.core.direct_drive[ax.index] = True
     set_tag_bits(ax, DriveEnableStatus=1)
-    g = ax.group
-    if id(g) in st.watched:
-        return
-    st.watched.add(id(g))
-
-    def after_update() -> None:
-        axes = [a for a in st.axes.values() if a.group is g]
-        for a in axes:
-            set_tag_bits(a, DriveEnableStatus=1)
-        if axes:  # again after the next update while an axis is under direct control
-            rt.after_update(g, after_update)
-        else:
-            st.watched.discard(id(g))
-
-    rt.after_update(g, after_update)
 
 
 def _enable_next_update(rt: MotionRuntime, ax: Axis, ctl: list) -> None:
@@ -117,7 +96,7 @@ def _enable_next_update(rt: MotionRuntime, ax: Axis, ctl: list) -> None:
 
     def enabled() -> None:
         if st.ends.get(id(ax), 0) == ends and not g.core.servo_on[ax.index]:
-            _hold(rt, ax)
+            _hold(ax)
         if rt.owns(ctl, g, handle):
             set_bits(ctl, DN=1)
 

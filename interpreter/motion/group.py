@@ -120,6 +120,7 @@ class MotionGroup:
         self.command_acceleration = np.zeros(0)
         self.servo_on = np.zeros(0, dtype=bool)
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
+        self.direct_drive = np.zeros(0, dtype=bool)  # MDO until MDF, MSO, MSF or a shutdown
         self.watch = WatchSet()  # MAW watch-position events
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
@@ -197,6 +198,7 @@ class MotionGroup:
         self.command_acceleration = np.append(self.command_acceleration, 0.0)
         self.servo_on = np.append(self.servo_on, virtual)  # a virtual axis needs no MSO
         self.shutdown = np.append(self.shutdown, False)
+        self.direct_drive = np.append(self.direct_drive, False)
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
         self._alpha = lag_alpha(self.tau, self.cup)
@@ -250,6 +252,7 @@ class MotionGroup:
         """MSO: close the loop (no effect on a virtual axis); refused while shut down."""
         if self.shutdown[axis]:
             return StartResult(error=MotionError.SHUTDOWN_STATE)
+        self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = True
             # the loop closes at the current actual position: no jump
@@ -259,6 +262,7 @@ class MotionGroup:
     def servo_off_axis(self, axis: int) -> StartResult:
         """MSF: open the loop; running motion on the axis ends at the next update."""
         h = self.new_handle()
+        self.direct_drive[axis] = False
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
@@ -270,6 +274,7 @@ class MotionGroup:
         shutdown state (motion is refused with error 7) until reset_shutdown."""
         h = self.new_handle()
         self.shutdown[axis] = True
+        self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = False
 

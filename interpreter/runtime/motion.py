@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from functools import cache
 
 import numpy as np
 
 from ..motion import STATUS_BITS, AxisKind, CamProfile, EventKind, MotionEvent, MotionGroup
+from ..semantics.locate import walk
 from ..semantics.program import ProgramModel
 from ..semantics.types import ArrayType, StructType, is_axis
 from ..syntax import nodes as n
@@ -406,7 +407,7 @@ class MotionRuntime:
             st = core.status
             zero = np.zeros(n_axes, dtype=np.int64)
             servo = core.servo_on.astype(np.int64)
-            drive = servo & ~core.virtual
+            drive = (servo | core.direct_drive.astype(np.int64)) & ~core.virtual  # MSO or MDO
             sources = {
                 "MOTIONSTATUS": lambda: core.motion_status_word().astype(np.int64),
                 "AXISSTATUS": lambda: servo | (drive << 1) | (core.shutdown.astype(np.int64) << 2),
@@ -532,23 +533,17 @@ def watched_members(expr: n.Expr, t: object) -> frozenset[str] | None:
 
 
 def _collect_words(node: object, out: set[str]) -> None:
-    """Identifiers and member names anywhere below an AST node (iterative walk)."""
-    stack = [node]
-    while stack:
-        x = stack.pop()
-        if isinstance(x, list | tuple):
-            stack.extend(x)
-        elif isinstance(x, n.Member):
+    """Identifiers, member names and words (GSV attribute names ...) anywhere below a node."""
+    for x in walk(node):
+        if isinstance(x, n.Member):
             out.add(x.name.upper())
-            stack.append(x.base)
         elif isinstance(x, n.Name):
             out.add(x.ident.upper().rsplit(".", 1)[-1])
-        elif isinstance(x, str):
-            out.add(x.upper())
-        elif hasattr(x, "__dataclass_fields__"):
-            for f in x.__dataclass_fields__:
-                if f != "span" and not f.endswith("_span"):
-                    stack.append(getattr(x, f))
+        else:
+            for f in fields(x):  # type: ignore[arg-type]
+                value = getattr(x, f.name)
+                if isinstance(value, str):
+                    out.add(value.upper())
 
 
 def _limit(x: float) -> float:
