@@ -139,8 +139,8 @@ def masr(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
         _complete(rt, ax, ctl, r.handle)
 
 
-@implements("MGSD")
-def mgsd(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
+def _group_shutdown(ctx: ExecContext, rung: bool, group: list, ctl: list, down: bool) -> None:
+    """MGSD (down) / MGSR: shut down or reset every axis of the group; done in this scan."""
     if not begin(ctl, rung):
         return
     rt = runtime(ctx)
@@ -148,24 +148,23 @@ def mgsd(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
     if g is None:
         return
     for ax in g.axes:
-        g.core.shutdown_axis(ax.index)
-        _end_direct(rt, ax)
-        set_tag_bits(ax, ShutdownStatus=1)
+        if down:
+            g.core.shutdown_axis(ax.index)
+            _end_direct(rt, ax)
+        else:
+            g.core.reset_shutdown(ax.index)
+        set_tag_bits(ax, ShutdownStatus=1 if down else 0)
     _group_done(rt, g, ctl, rt.token(g))
+
+
+@implements("MGSD")
+def mgsd(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
+    _group_shutdown(ctx, rung, group, ctl, down=True)
 
 
 @implements("MGSR")
 def mgsr(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
-    if not begin(ctl, rung):
-        return
-    rt = runtime(ctx)
-    g = configured(rt, ctl, rt.group(group))
-    if g is None:
-        return
-    for ax in g.axes:
-        g.core.reset_shutdown(ax.index)
-        set_tag_bits(ax, ShutdownStatus=0)
-    _group_done(rt, g, ctl, rt.token(g))
+    _group_shutdown(ctx, rung, group, ctl, down=False)
 
 
 @implements("MGSP")
