@@ -20,12 +20,12 @@ from ..vm.refs import ArrayRef, Ref
 from .motion_common import (
     begin,
     clear_on_prescan,
-    configured,
     fail,
     failed,
     real,
     runtime,
     set_axis_status,
+    start_on_axis,
     whole,
 )
 from .registry import implements, prescan
@@ -84,12 +84,10 @@ def matc(
     distance_scaling: float, time_scaling: float, execution_mode: int, execution_schedule: int,
     lock_position: float, lock_direction: int, instruction_mode: int,
 ) -> None:  # fmt: skip
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     if cam_profile.start != 0:  # only element [0] carries the profile's Status
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MATC_PROFILE)
         return

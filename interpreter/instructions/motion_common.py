@@ -75,6 +75,29 @@ def configured(rt: MotionRuntime, ctl: list, target: _A | None) -> _A | None:
     return target
 
 
+def start_on_axis(
+    ctx: ExecContext, rung: bool, axis: list, ctl: list
+) -> tuple[MotionRuntime, Axis] | None:
+    """The handshake, then the axis the instruction names (error 11 when it is not
+    configured); None when there is nothing more to do."""
+    if not begin(ctl, rung):
+        return None
+    rt = runtime(ctx)
+    ax = configured(rt, ctl, rt.axis(axis))
+    return None if ax is None else (rt, ax)
+
+
+def start_on_group(
+    ctx: ExecContext, rung: bool, group: list, ctl: list
+) -> tuple[MotionRuntime, Group] | None:
+    """As start_on_axis, for an instruction on a motion group."""
+    if not begin(ctl, rung):
+        return None
+    rt = runtime(ctx)
+    g = configured(rt, ctl, rt.group(group))
+    return None if g is None else (rt, g)
+
+
 def clear_on_prescan(ctl: list) -> None:
     """Prescan (seed tables): EN, DN, ER and IP cleared."""
     set_bits(ctl, EN=0, DN=0, ER=0, IP=0)

@@ -23,7 +23,13 @@ from ..runtime.motion import Group, Tracked
 from ..runtime.motion_layout import set_bits
 from ..vm.context import ExecContext
 from ..vm.values import f32, wrap
-from .motion_common import begin, clear_on_prescan, configured, fail, real, runtime, whole
+from .motion_common import (
+    clear_on_prescan,
+    fail,
+    real,
+    start_on_axis,
+    whole,
+)
 from .motion_state import set_tag_bits
 from .registry import implements, prescan
 
@@ -36,12 +42,10 @@ FORWARD, REVERSE = 0, 1  # WatchTriggerCondition (stdlib/instructions/motion_eve
 def maw(
     ctx: ExecContext, rung: bool, axis: list, ctl: list, trigger: object, position: object
 ) -> None:
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     tc = whole(trigger)
     if tc not in (FORWARD, REVERSE):
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MAW_TRIGGER)
@@ -67,12 +71,10 @@ def maw(
 
 @implements("MDW")
 def mdw(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     ax.group.core.disarm_watch(ax.index)
     set_tag_bits(ax, WatchEventArmedStatus=0, WatchEventStatus=0)
     set_bits(ctl, DN=1)
@@ -101,12 +103,10 @@ def mar(
 ) -> None:  # fmt: skip
     """Arm registration: DN and IP at once, RegEventNArmedStatus set and RegEventNStatus
     cleared. No edge ever reaches the simulated inputs, so the event does not occur."""
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     lo, hi = real(minimum), real(maximum)
     checks = (
         (whole(trigger) in (0, 1), _MAR_TRIGGER),
@@ -128,12 +128,10 @@ def mar(
 
 @implements("MDR")
 def mdr(ctx: ExecContext, rung: bool, axis: list, ctl: list, input_number: object = 1) -> None:
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     n = _input_number(input_number)
     if n is None:
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MDR_INPUT)

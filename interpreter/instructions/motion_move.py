@@ -29,6 +29,7 @@ from .motion_common import (
     jerk_value,
     real,
     runtime,
+    start_on_group,
     time_based_rates,
     whole,
 )
@@ -257,12 +258,10 @@ def mgs(ctx: ExecContext, rung: bool, group: list, ctl: list, stop_mode: int) ->
     """Stop every axis of the group: Programmed (each axis's ProgrammedStopMode), Fast Stop
     or Fast Disable. Fast modes decelerate at the configured maximum; Disable turns the
     drive off at rest, Hard modes at once, Shutdown also breaks the axis's MDAC links."""
-    if not begin(ctl, rung):
+    started = start_on_group(ctx, rung, group, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    g = configured(rt, ctl, rt.group(group))
-    if g is None:
-        return
+    rt, g = started
     sm = whole(stop_mode)
     if sm not in (0, 1, 2):
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 2)

@@ -13,7 +13,14 @@ from ..motion import MotionError
 from ..runtime.motion import Tracked
 from ..runtime.motion_layout import set_bits
 from ..vm.context import ExecContext
-from .motion_common import begin, clear_on_prescan, configured, fail, failed, real, runtime, whole
+from .motion_common import (
+    clear_on_prescan,
+    fail,
+    failed,
+    real,
+    start_on_axis,
+    whole,
+)
 from .registry import implements, prescan
 
 _MRP_TYPE = 2  # faceplate index of Type (EXERR)
@@ -21,12 +28,10 @@ _MRP_TYPE = 2  # faceplate index of Type (EXERR)
 
 @implements("MAH")
 def mah(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     get, v = ax.layout.get, ax.value
     r = ax.group.core.home(
         ax.index, int(get(v, "HomeMode")), int(get(v, "HomeSequence")), get(v, "HomePosition")
@@ -41,12 +46,10 @@ def mah(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
 def mrp(
     ctx: ExecContext, rung: bool, axis: list, ctl: list, type_: int, select: int, position: float
 ) -> None:
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     kind = whole(type_)
     if kind not in (0, 1):  # RedefineType: 0 Absolute, 1 Relative
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _MRP_TYPE)

@@ -19,7 +19,15 @@ from ..runtime.motion import Axis, Group, MotionRuntime
 from ..runtime.motion_layout import pack, packed_words, set_bits, struct_type
 from ..vm.context import ExecContext
 from ..vm.values import f32
-from .motion_common import begin, clear_on_prescan, configured, fail, runtime
+from .motion_common import (
+    begin,
+    clear_on_prescan,
+    configured,
+    fail,
+    runtime,
+    start_on_axis,
+    start_on_group,
+)
 from .registry import implements, prescan
 
 
@@ -68,12 +76,10 @@ def mafr(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
 
 @implements("MSO")
 def mso(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
-    if not begin(ctl, rung):
+    started = start_on_axis(ctx, rung, axis, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    ax = configured(rt, ctl, rt.axis(axis))
-    if ax is None:
-        return
+    rt, ax = started
     r = ax.group.core.servo_on_axis(ax.index)
     if not r.ok:  # a shut-down axis refuses servo on (error 7) until MASR
         fail(rt, ctl, r.error)
@@ -141,12 +147,10 @@ def masr(ctx: ExecContext, rung: bool, axis: list, ctl: list) -> None:
 
 def _group_shutdown(ctx: ExecContext, rung: bool, group: list, ctl: list, down: bool) -> None:
     """MGSD (down) / MGSR: shut down or reset every axis of the group; done in this scan."""
-    if not begin(ctl, rung):
+    started = start_on_group(ctx, rung, group, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    g = configured(rt, ctl, rt.group(group))
-    if g is None:
-        return
+    rt, g = started
     for ax in g.axes:
         if down:
             g.core.shutdown_axis(ax.index)
@@ -169,12 +173,10 @@ def mgsr(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
 
 @implements("MGSP")
 def mgsp(ctx: ExecContext, rung: bool, group: list, ctl: list) -> None:
-    if not begin(ctl, rung):
+    started = start_on_group(ctx, rung, group, ctl)
+    if started is None:
         return
-    rt = runtime(ctx)
-    g = configured(rt, ctl, rt.group(group))
-    if g is None:
-        return
+    rt, g = started
     core = g.core
     for ax in g.axes:
         v, ix = ax.value, ax.layout.index
