@@ -14,9 +14,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import EventKind, StopType
+from interpreter.motion.enums import EventKind
 from interpreter.motion.errors import StartResult
-from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
+from interpreter.motion.process import (
+    EndReason,
+    Events,
+    MotionlessSet,
+)
 
 if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the class
     from interpreter.motion.group import MotionGroup
@@ -32,7 +36,7 @@ class Watch:
 
 
 @dataclass(slots=True)
-class WatchSet:
+class WatchSet(MotionlessSet):
     armed: dict[int, Watch] = field(default_factory=dict)  # by axis
     # MAR: (axis, input) -> handle; nothing is wired to the simulated inputs (decision 0065)
     registration: dict[tuple[int, int], int] = field(default_factory=dict)
@@ -47,42 +51,8 @@ class WatchSet:
         return self.armed.pop(axis, None)
 
     # -- as a process set of the group (decision 0104): no motion, it watches the result
-    def begin_update(self) -> None:
-        pass
-
-    def step(
-        self,
-        cup: float,
-        level_sel: LevelSel,
-        positions: AxisState,
-        velocities: AxisState,
-        events: Events,
-    ) -> Contribution:
-        return EMPTY
-
     def end_update(self, actual: np.ndarray, events: Events) -> None:
         self.check(actual, events)
-
-    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        return np.zeros(n), np.zeros(n)
-
-    def edges(self) -> list[tuple[int, int]]:
-        return []
-
-    def shift_master(self, axis: int, delta: float) -> None:
-        pass  # a watch compares actual positions as they are (after MRP too)
-
-    def status(self, n: int) -> dict[str, np.ndarray]:
-        return {}
-
-    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
-        pass
-
-    def busy(self, axis: int) -> bool:
-        return False  # moves nothing
-
-    def links_in_use(self) -> set[int]:
-        return set()
 
     def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
         return 0.0, False  # a watch stays armed through stops (only MDW or a new MAW ends it)

@@ -23,13 +23,10 @@ import numpy as np
 from interpreter.motion.enums import EventKind, HomeMode, HomeSequence, StopType
 from interpreter.motion.errors import MotionError, StartResult
 from interpreter.motion.process import (
-    EMPTY,
-    AxisState,
-    Contribution,
     Ending,
     EndReason,
     Events,
-    LevelSel,
+    MotionlessSet,
 )
 
 if TYPE_CHECKING:  # the group calls home; only the annotation needs the class
@@ -68,7 +65,7 @@ def homing_error(
     return MotionError.OK, not immediate
 
 
-class HomingSet:
+class HomingSet(MotionlessSet):
     """Homing requests of a group as a process set: no motion of its own (immediate homing
     shifts the positions at the start of an update; passive homing that waits commands
     nothing), HomingStatus while one waits, AxisHomedStatus once an axis was homed."""
@@ -86,15 +83,6 @@ class HomingSet:
             ev.append((h, EventKind.ENDED, axis))
             self.version += 1
 
-    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
-        pass
-
-    def busy(self, axis: int) -> bool:
-        return False  # moves nothing
-
-    def links_in_use(self) -> set[int]:
-        return set()
-
     def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
         """Stops (All, Home) and kills end a waiting homing; a merge does not."""
         if reason not in (Ending.KILL, StopType.ALL, StopType.HOME):
@@ -102,31 +90,6 @@ class HomingSet:
         ended = axis in self.waiting
         self.end_on(axis, events)
         return 0.0, ended
-
-    def begin_update(self) -> None:
-        pass
-
-    def step(
-        self,
-        cup: float,
-        level_sel: LevelSel,
-        positions: AxisState,
-        velocities: AxisState,
-        events: Events,
-    ) -> Contribution:
-        return EMPTY
-
-    def end_update(self, actual: np.ndarray, events: Events) -> None:
-        pass
-
-    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        return np.zeros(n), np.zeros(n)
-
-    def edges(self) -> list[tuple[int, int]]:
-        return []
-
-    def shift_master(self, axis: int, delta: float) -> None:
-        pass
 
     def status(self, n: int) -> dict[str, np.ndarray]:
         cache = self._status_cache

@@ -15,7 +15,11 @@ import numpy as np
 
 from interpreter.motion.enums import EventKind, MasterReference, MotionType, StopType
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
-from interpreter.motion.process import EMPTY, AxisState, Contribution, EndReason, Events, LevelSel
+from interpreter.motion.process import (
+    EndReason,
+    Events,
+    MotionlessSet,
+)
 
 if TYPE_CHECKING:  # the group calls assign_master; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -32,7 +36,7 @@ class MasterLink:
     reference: MasterReference
 
 
-class LinkTable:
+class LinkTable(MotionlessSet):
     def __init__(self) -> None:
         self.pending: dict[tuple[int, MotionType], MasterLink] = {}
         self.active: dict[tuple[int, MotionType], MasterLink] = {}
@@ -66,15 +70,6 @@ class LinkTable:
                 del table[key]
                 self.version += 1
 
-    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
-        pass
-
-    def busy(self, axis: int) -> bool:
-        return False  # moves nothing
-
-    def links_in_use(self) -> set[int]:
-        return set()
-
     def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
         """MAS All breaks the slave's links (MGS too, through its stops). Shutdown breaks
         the links of both ends itself (break_where)."""
@@ -85,31 +80,6 @@ class LinkTable:
         return 0.0, len(self.pending) + len(self.active) != before
 
     # -- as a process set of the group -------------------------------------------------
-    def begin_update(self) -> None:
-        pass
-
-    def step(
-        self,
-        cup: float,
-        level_sel: LevelSel,
-        positions: AxisState,
-        velocities: AxisState,
-        events: Events,
-    ) -> Contribution:
-        return EMPTY
-
-    def end_update(self, actual: np.ndarray, events: Events) -> None:
-        pass
-
-    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        return np.zeros(n), np.zeros(n)
-
-    def edges(self) -> list[tuple[int, int]]:
-        return []  # the motion a link drives reports its own edge
-
-    def shift_master(self, axis: int, delta: float) -> None:
-        pass
-
     def status(self, n: int) -> dict[str, np.ndarray]:
         cache = self._status_cache
         if cache is not None and cache[0] == n and cache[1] == self.version:

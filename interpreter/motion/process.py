@@ -99,3 +99,47 @@ class ProcessSet(Protocol):
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS on the axis (MGS: None) was executed; it applies at the next update, but
         what it frees at once (an axis claimed by a time cam) is freed now."""
+
+
+class MotionlessSet:
+    """The ProcessSet methods of a kind that moves no axis (watch, homing, MDAC links): it
+    contributes nothing to the update, and a subclass keeps only what it does."""
+
+    __slots__ = ()
+
+    def begin_update(self) -> None:
+        pass
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        return EMPTY
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        pass
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return np.zeros(n), np.zeros(n)
+
+    def edges(self) -> list[tuple[int, int]]:
+        return []  # the motion a link drives reports its own edge
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        pass
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        return {}
+
+    def busy(self, axis: int) -> bool:
+        return False  # moves nothing
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
