@@ -17,6 +17,7 @@ from interpreter.motion.process import (
     EndReason,
     Events,
     LevelSel,
+    rows_at_level,
 )
 from interpreter.motion.profiles import Limits, MoveProfile
 
@@ -212,13 +213,9 @@ class ProfileSet:
             return EMPTY
         if self._dirty:
             self._rebuild()
-        sel: slice | np.ndarray
-        if level_sel is None:
-            sel = slice(None)  # every row: slices, no copies
-        else:
-            sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
-            if len(sel) == 0:
-                return EMPTY
+        sel = rows_at_level(level_sel, self._axis)
+        if isinstance(sel, np.ndarray) and len(sel) == 0:
+            return EMPTY
         self._fresh = False
         self._n[sel] += self._timed[sel]  # a time-driven clock is counted updates (no drift)
         t = self._n[sel] * cup

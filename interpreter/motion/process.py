@@ -51,6 +51,14 @@ class Contribution:
 EMPTY = Contribution(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
 
 
+def rows_at_level(level_sel: LevelSel, row_axes: np.ndarray) -> slice | np.ndarray:
+    """The rows of a set to step now: every row (a slice: views, no copies) or the rows whose
+    axis has the selected level (masters are stepped before their slaves)."""
+    if level_sel is None:
+        return slice(None)
+    return np.flatnonzero(level_sel[0][row_axes] == level_sel[1])
+
+
 class ProcessSet(Protocol):
     """The interface MotionGroup schedules. Start calls stay in the kind's own API (the
     group's start_* methods validate and queue them for the next update)."""

@@ -29,6 +29,7 @@ from interpreter.motion.process import (
     EndReason,
     Events,
     LevelSel,
+    rows_at_level,
 )
 
 if TYPE_CHECKING:  # the group calls start_time_cam; only the annotation needs the class
@@ -199,13 +200,9 @@ class TimeCamSet:
             return EMPTY
         if self._dirty:
             self._rebuild()
-        sel: slice | np.ndarray
-        if level_sel is None:
-            sel = slice(None)  # every row: slices, no copies
-        else:
-            sel = np.flatnonzero(level_sel[0][self._axis] == level_sel[1])
-            if len(sel) == 0:
-                return EMPTY
+        sel = rows_at_level(level_sel, self._axis)
+        if isinstance(sel, np.ndarray) and len(sel) == 0:
+            return EMPTY
         # a cam starts with count 0 at the update that applies it; then one more per update
         self._count[sel] += 1
         self._raw[sel] = self._count[sel] * cup
