@@ -508,10 +508,7 @@ def program_demand(model: ProgramModel) -> frozenset[str] | None:
     identifier written anywhere in its routines (an over-approximation that needs no
     types), and the members aliases point at. None (all) when an alias names a whole axis."""
     words: set[str] = set()
-    routines = list(model.routines)
-    for aoi in model.aois.values():
-        routines.extend(getattr(aoi, "routines", {}).values())
-    for r in routines:
+    for r in model.all_routines():
         _collect_words((r.body, r.rungs, r.decls), words)
     for t in model.tags.values():
         base = t.alias_of

@@ -89,6 +89,13 @@ class ProgramModel:
     tasks: list[TaskInfo] = field(default_factory=list)
     aois: dict[str, object] = field(default_factory=dict)  # upper name -> semantics.aoi.Aoi
 
+    def all_routines(self) -> list[n.Routine]:
+        """The program's routines and those of its add-on instructions (Logic, Prescan ...)."""
+        routines = list(self.routines)
+        for aoi in self.aois.values():
+            routines.extend(getattr(aoi, "routines", {}).values())
+        return routines
+
     def routine(self, name: str, program: str | None = None) -> n.Routine | None:
         """A routine by name; in an L5X project only among the routines of `program`."""
         key = name.upper()

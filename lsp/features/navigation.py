@@ -25,11 +25,7 @@ class RenameRefused(Exception):
 
 
 def _routines(an: Analysed) -> list[n.Routine]:
-    model = an.loaded.model
-    routines = list(model.routines)
-    for aoi in model.aois.values():
-        routines.extend(getattr(aoi, "routines", {}).values())
-    return routines
+    return an.loaded.model.all_routines()
 
 
 def definition(an: Analysed, line: int, character: int) -> list[Location]:
