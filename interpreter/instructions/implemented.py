@@ -49,6 +49,7 @@ IMPLEMENTED = frozenset(
         "CTD",
         "CTU",
         "CTUD",
+        "DCS",
         "DEG@rll",
         "DEG@st",
         "DELETE",

@@ -1,0 +1,150 @@
+"""DCS dual-channel input stop, scan by scan through `logixst run --trace` (decision 0075).
+
+SPEC 9.32: a safety instruction is not a U diagnostic; with nothing connected its channels
+and input status read 0. The programs below drive the inputs from a scan counter n (n = k
+on scan k, at virtual time (k - 1) * period). Expected bits follow the documented DCS
+behaviour: O1 only with both channels active, input status on and no fault; a channel
+disagreement lasting the discrepancy time faults (FP) until both channels go inactive (CI
+cleared) and Reset makes an off-to-on transition; manual cold start / restart wait for that
+transition (RR), automatic ones do not.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from interpreter.cli import main
+from tests.instructions.run_cli import trace
+
+BITS = ["d.O1", "d.RR", "d.II", "d.IP", "d.CI", "d.FP"]
+HEAD = "VAR d : DCI_STOP; a, b, st, r : BOOL; n : DINT; END_VAR\nADD(n,1,n);\n"
+
+
+def _dcs(tmp_path: Path, drive: str, args: str, scans: int, period: float = 10.0) -> list:
+    src = HEAD + drive + f"DCS(d,E-Stop,{args},a,b,st,r);\n"
+    rows, report = trace(tmp_path, src, ".rll", scans, BITS, period_ms=period)
+    assert report["diagnostics"] == [] and report["faults"] == []
+    return [tuple(int(row[k]) for k in BITS) for row in rows]
+
+
+#            O1 RR II IP CI FP
+OFF_IDLE = (0, 0, 1, 0, 0, 0)  # both channels inactive, no fault
+WAIT_RESET = (0, 1, 0, 0, 0, 0)  # both active, waiting for a reset
+RUNNING = (1, 0, 0, 0, 0, 0)
+
+
+def test_nothing_connected_input_status_off_is_a_fault(tmp_path: Path) -> None:
+    # a = b = st = r = 0 on every scan: channels inactive (II) and status off (FP); O1 off
+    rows = _dcs(tmp_path, "", "Equivalent - Active High,500,Manual,Manual", 3)
+    assert rows == [(0, 0, 1, 0, 0, 1)] * 3
+
+
+def test_manual_cold_start_and_manual_restart(tmp_path: Path) -> None:
+    drive = (
+        "OTL(st);\n"
+        "LIM(2,n,5)OTE(a);\nGEQ(n,8)OTL(a);\nLIM(2,n,5)OTE(b);\nGEQ(n,8)OTL(b);\n"
+        "EQU(n,4)OTE(r);\nEQU(n,10)OTL(r);\n"
+    )
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Manual,Manual", 11)
+    assert rows == [
+        OFF_IDLE,  # n 1: nothing active yet
+        WAIT_RESET,  # n 2: both active; manual cold start waits for a reset
+        WAIT_RESET,  # n 3
+        RUNNING,  # n 4: Reset 0 -> 1
+        RUNNING,  # n 5
+        OFF_IDLE,  # n 6: both inactive: stop demand, O1 off at once
+        OFF_IDLE,  # n 7
+        WAIT_RESET,  # n 8: active again; manual restart waits (Reset is off)
+        WAIT_RESET,  # n 9
+        RUNNING,  # n 10: Reset 0 -> 1
+        RUNNING,  # n 11: Reset held on changes nothing
+    ]
+
+
+def test_reset_held_on_is_not_a_reset(tmp_path: Path) -> None:
+    # Reset on from scan 1 (before the channels are active): no off-to-on transition when
+    # they become active at n 3, so O1 waits; Reset dropped at n 5 and raised at n 6 starts.
+    drive = "OTL(st);\nGEQ(n,3)OTE(a);\nGEQ(n,3)OTE(b);\nLES(n,5)OTE(r);\nGEQ(n,6)OTL(r);\n"
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Manual,Manual", 6)
+    assert rows == [OFF_IDLE, OFF_IDLE, WAIT_RESET, WAIT_RESET, WAIT_RESET, RUNNING]
+
+
+def test_automatic_cold_start_and_restart(tmp_path: Path) -> None:
+    # both channels follow one signal: on n 1-2, off n 3, on again n 4
+    drive = "OTL(st);\nNEQ(n,3)OTE(a);\nNEQ(n,3)OTE(b);\n"
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Automatic,Automatic", 4)
+    assert rows == [RUNNING, RUNNING, OFF_IDLE, RUNNING]
+
+
+def test_manual_cold_start_automatic_restart(tmp_path: Path) -> None:
+    # active from scan 1: the cold start is manual (RR) until the reset at n 2; the stop at
+    # n 3 makes the restart type apply, which is automatic: O1 back at n 4 with no reset.
+    drive = "OTL(st);\nNEQ(n,3)OTE(a);\nNEQ(n,3)OTE(b);\nEQU(n,2)OTE(r);\n"
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Automatic,Manual", 4)
+    assert rows == [WAIT_RESET, RUNNING, OFF_IDLE, RUNNING]
+
+
+def test_discrepancy_within_time_is_no_fault(tmp_path: Path) -> None:
+    # a on at n 2 (t 10), b follows at n 4 (t 30): 20 ms < 30 ms, so only IP while waiting
+    drive = "OTL(st);\nGEQ(n,2)OTE(a);\nGEQ(n,4)OTE(b);\n"
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Automatic,Automatic", 4)
+    assert rows == [OFF_IDLE, (0, 0, 0, 1, 0, 0), (0, 0, 0, 1, 0, 0), RUNNING]
+
+
+def test_discrepancy_fault_cycle_and_reset(tmp_path: Path) -> None:
+    # a on n 2-6 alone, b never until n 9 when both come on; Reset pulses at n 6 and n 8.
+    drive = (
+        "OTL(st);\nLIM(2,n,6)OTE(a);\nGEQ(n,9)OTL(a);\nGEQ(n,9)OTE(b);\n"
+        "EQU(n,6)OTE(r);\nEQU(n,8)OTL(r);\n"
+    )
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Manual,Manual", 9)
+    assert rows == [
+        OFF_IDLE,  # n 1 t 0
+        (0, 0, 0, 1, 0, 0),  # n 2 t 10: disagreement starts
+        (0, 0, 0, 1, 0, 0),  # n 3 t 20: 10 ms
+        (0, 0, 0, 1, 0, 0),  # n 4 t 30: 20 ms
+        (0, 0, 0, 0, 1, 1),  # n 5 t 40: 30 ms = discrepancy time: fault, cycle required
+        (0, 0, 0, 0, 1, 1),  # n 6: reset ignored, the channels were not cycled
+        (0, 0, 1, 0, 0, 1),  # n 7: both inactive: cycle done, fault still present
+        OFF_IDLE,  # n 8: reset clears the fault
+        WAIT_RESET,  # n 9: both active, manual restart waits
+    ]
+
+
+def test_input_status_loss_and_reset(tmp_path: Path) -> None:
+    # channels active throughout; status off at n 3 only; Reset at n 5
+    drive = "OTL(a);\nOTL(b);\nNEQ(n,3)OTE(st);\nEQU(n,5)OTE(r);\n"
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Automatic,Automatic", 5)
+    fault = (0, 0, 0, 0, 0, 1)
+    # the reset at n 5 clears the fault and the automatic restart turns O1 on at once
+    assert rows == [RUNNING, RUNNING, fault, fault, RUNNING]
+
+
+def test_complementary_channels(tmp_path: Path) -> None:
+    # Complementary: active is A = 1 with B = 0; n 1 A 1 B 0 -> run; n 2 A 0 B 1 -> stop;
+    # n 3 A 1 B 1 -> a disagreement (A active, B inactive) is timed
+    drive = "OTL(st);\nNEQ(n,2)OTE(a);\nGEQ(n,2)OTE(b);\n"
+    rows = _dcs(tmp_path, drive, "Complementary,30,Automatic,Automatic", 3)
+    assert rows == [RUNNING, OFF_IDLE, (0, 0, 0, 1, 0, 0)]
+
+
+def test_false_rung_turns_o1_off(tmp_path: Path) -> None:
+    src = (
+        "VAR d : DCI_STOP; n : DINT; go : BOOL; END_VAR\nADD(n,1,n);\nNEQ(n,2)OTE(go);\n"
+        "XIC(go)DCS(d,E-Stop,Equivalent - Active High,30,Automatic,Automatic,1,1,1,0);\n"
+    )
+    rows, report = trace(tmp_path, src, ".rll", 3, ["d.O1"], period_ms=10.0)
+    assert [int(r["d.O1"]) for r in rows] == [1, 0, 1]
+    assert report["diagnostics"] == []
+
+
+def test_dcs_checks_without_u304_and_dcst_still_reports_it(tmp_path: Path, capsys) -> None:  # noqa: ANN001
+    prog = tmp_path / "p.rll"
+    prog.write_text(
+        "VAR d : DCI_STOP; t : DCI_STOP_TEST; x : BOOL; END_VAR\n"
+        "DCS(d,E-Stop,Equivalent - Active High,30,Manual,Manual,x,x,x,x);\n"
+        "DCST(t,E-Stop,Equivalent - Active High,30,Manual,Manual,x,x,x,x,x);\n"
+    )
+    main(["check", str(prog)])
+    out = capsys.readouterr().out
+    assert out.count("U304") == 1 and "DCST" in out
