@@ -1,4 +1,4 @@
-"""DCS dual-channel input stop, scan by scan through `logixst run --trace` (decision 0075).
+"""DCS, DCM and DCSRT dual-channel inputs, scan by scan through `logixst run --trace` (0075).
 
 SPEC 9.32: a safety instruction is not a U diagnostic; with nothing connected its channels
 and input status read 0. The programs below drive the inputs from a scan counter n (n = k
@@ -6,7 +6,8 @@ on scan k, at virtual time (k - 1) * period). Expected bits follow the documente
 behaviour: O1 only with both channels active, input status on and no fault; a channel
 disagreement lasting the discrepancy time faults (FP) until both channels go inactive (CI
 cleared) and Reset makes an off-to-on transition; manual cold start / restart wait for that
-transition (RR), automatic ones do not.
+transition (RR), automatic ones do not. DCM's O1 follows the channels with no reset; DCSRT's
+O1 needs both channels to turn active (after being inactive together) while Enable is on.
 """
 
 from __future__ import annotations
@@ -148,3 +149,99 @@ def test_dcs_checks_without_u304_and_dcst_still_reports_it(tmp_path: Path, capsy
     main(["check", str(prog)])
     out = capsys.readouterr().out
     assert out.count("U304") == 1 and "DCST" in out
+
+
+def test_dcsrt_and_dcm_check_clean(tmp_path: Path, capsys) -> None:  # noqa: ANN001
+    prog = tmp_path / "p.rll"
+    prog.write_text(
+        "VAR s : DCI_START; m : DCI_MONITOR; x : BOOL; END_VAR\n"
+        "DCSRT(s,User Defined,Complementary,30,x,x,x,x,x);\n"
+        "DCM(m,Light Curtain,Equivalent - Active High,30,x,x,x,x);\n"
+    )
+    assert main(["check", str(prog)]) == 0
+    assert "U304" not in capsys.readouterr().out
+
+
+# ------------------------------------------------------------------ DCM
+MBITS = ["m.O1", "m.II", "m.IP", "m.CI", "m.FP"]
+MHEAD = "VAR m : DCI_MONITOR; a, b, st, r : BOOL; n : DINT; END_VAR\nADD(n,1,n);\n"
+
+
+def _dcm(tmp_path: Path, drive: str, disc_ms: int, scans: int) -> list:
+    src = MHEAD + drive + f"DCM(m,Safety Gate,Equivalent - Active High,{disc_ms},a,b,st,r);\n"
+    rows, report = trace(tmp_path, src, ".rll", scans, MBITS, period_ms=10.0)
+    assert report["diagnostics"] == [] and report["faults"] == []
+    return [tuple(int(row[k]) for k in MBITS) for row in rows]
+
+
+def test_dcm_nothing_connected(tmp_path: Path) -> None:
+    #              O1 II IP CI FP
+    assert _dcm(tmp_path, "", 500, 2) == [(0, 1, 0, 0, 1)] * 2
+
+
+def test_dcm_follows_the_channels_without_reset(tmp_path: Path) -> None:
+    # both on n 2-3, off n 4, on n 5
+    drive = "OTL(st);\nGEQ(n,2)OTE(a);\nEQU(n,4)OTU(a);\nXIC(a)OTE(b);\n"
+    idle, on = (0, 1, 0, 0, 0), (1, 0, 0, 0, 0)
+    assert _dcm(tmp_path, drive, 20, 5) == [idle, on, on, idle, on]
+
+
+def test_dcm_discrepancy_fault_cycle_and_reset(tmp_path: Path) -> None:
+    # a alone n 2-4; both off n 5-6; Reset n 6; both on n 7. Discrepancy time 20 ms.
+    drive = "OTL(st);\nLIM(2,n,4)OTE(a);\nGEQ(n,7)OTL(a);\nGEQ(n,7)OTE(b);\nEQU(n,6)OTE(r);\n"
+    assert _dcm(tmp_path, drive, 20, 7) == [
+        (0, 1, 0, 0, 0),  # n 1 t 0
+        (0, 0, 1, 0, 0),  # n 2 t 10: disagreement starts
+        (0, 0, 1, 0, 0),  # n 3 t 20: 10 ms
+        (0, 0, 0, 1, 1),  # n 4 t 30: 20 ms = discrepancy time: fault
+        (0, 1, 0, 0, 1),  # n 5: both inactive, cycle done, fault kept
+        (0, 1, 0, 0, 0),  # n 6: reset clears it
+        (1, 0, 0, 0, 0),  # n 7: both active: O1 with no further reset
+    ]
+
+
+# ------------------------------------------------------------------ DCSRT
+SBITS = ["s.O1", "s.II", "s.IP", "s.CI", "s.FP"]
+SHEAD = "VAR s : DCI_START; a, b, st, r, en : BOOL; n : DINT; END_VAR\nADD(n,1,n);\n"
+
+
+def _dcsrt(tmp_path: Path, drive: str, scans: int) -> list:
+    src = SHEAD + drive + "DCSRT(s,User Defined,Equivalent - Active High,30,en,a,b,st,r);\n"
+    rows, report = trace(tmp_path, src, ".rll", scans, SBITS, period_ms=10.0)
+    assert report["diagnostics"] == [] and report["faults"] == []
+    return [tuple(int(row[k]) for k in SBITS) for row in rows]
+
+
+#           O1 II IP CI FP
+S_IDLE = (0, 1, 0, 0, 0)
+S_ON = (1, 0, 0, 0, 0)
+S_HELD = (0, 0, 0, 0, 0)  # both active but no start (not armed or not enabled)
+
+
+def test_dcsrt_nothing_connected(tmp_path: Path) -> None:
+    assert _dcsrt(tmp_path, "OTL(en);\n", 2) == [(0, 1, 0, 0, 1)] * 2
+
+
+def test_dcsrt_start_from_inactive(tmp_path: Path) -> None:
+    # enabled throughout; both channels on n 2-3, off n 4, on n 5-6
+    drive = "OTL(st);\nOTL(en);\nNEQ(n,1)OTE(a);\nEQU(n,4)OTU(a);\nXIC(a)OTE(b);\n"
+    assert _dcsrt(tmp_path, drive, 6) == [S_IDLE, S_ON, S_ON, S_IDLE, S_ON, S_ON]
+
+
+def test_dcsrt_channels_active_at_go_to_run_are_no_start(tmp_path: Path) -> None:
+    # active from scan 1: no start until they have been inactive (n 3) and come back (n 4)
+    drive = "OTL(st);\nOTL(en);\nNEQ(n,3)OTE(a);\nNEQ(n,3)OTE(b);\n"
+    assert _dcsrt(tmp_path, drive, 4) == [S_HELD, S_HELD, S_IDLE, S_ON]
+
+
+def test_dcsrt_enable_off_stops_and_needs_a_new_start(tmp_path: Path) -> None:
+    # channels on from n 2 on; Enable off at n 3 only: O1 off at n 3 and stays off at n 4
+    # (the channels never went inactive again)
+    drive = "OTL(st);\nNEQ(n,3)OTE(en);\nGEQ(n,2)OTE(a);\nGEQ(n,2)OTE(b);\n"
+    assert _dcsrt(tmp_path, drive, 4) == [S_IDLE, S_ON, S_HELD, S_HELD]
+
+
+def test_dcsrt_activation_while_disabled_is_used_up(tmp_path: Path) -> None:
+    # channels on at n 2 with Enable off; Enable on at n 3: no start
+    drive = "OTL(st);\nGEQ(n,3)OTE(en);\nGEQ(n,2)OTE(a);\nGEQ(n,2)OTE(b);\n"
+    assert _dcsrt(tmp_path, drive, 3) == [S_IDLE, S_HELD, S_HELD]
