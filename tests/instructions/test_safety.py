@@ -49,7 +49,7 @@ def test_manual_cold_start_and_manual_restart(tmp_path: Path) -> None:
     rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Manual,Manual", 11)
     assert rows == [
         OFF_IDLE,  # n 1: nothing active yet
-        WAIT_RESET,  # n 2: both active; manual cold start waits for a reset
+        WAIT_RESET,  # n 2: both active; (inactive at n 1 was a demand) manual restart waits
         WAIT_RESET,  # n 3
         RUNNING,  # n 4: Reset 0 -> 1
         RUNNING,  # n 5
@@ -245,3 +245,11 @@ def test_dcsrt_activation_while_disabled_is_used_up(tmp_path: Path) -> None:
     # channels on at n 2 with Enable off; Enable on at n 3: no start
     drive = "OTL(st);\nGEQ(n,3)OTE(en);\nGEQ(n,2)OTE(a);\nGEQ(n,2)OTE(b);\n"
     assert _dcsrt(tmp_path, drive, 3) == [S_IDLE, S_HELD, S_HELD]
+
+
+def test_cold_start_type_only_covers_inputs_active_at_the_go_to_run(tmp_path: Path) -> None:
+    # Cold start Automatic, restart Manual. Channels inactive at n 1 (a stop demand), active
+    # from n 2: the restart type applies, so O1 waits for the reset at n 3.
+    drive = "OTL(st);\nGEQ(n,2)OTE(a);\nGEQ(n,2)OTE(b);\nEQU(n,3)OTE(r);\n"
+    rows = _dcs(tmp_path, drive, "Equivalent - Active High,30,Manual,Automatic", 3)
+    assert rows == [OFF_IDLE, WAIT_RESET, RUNNING]
