@@ -3,7 +3,8 @@
 SPEC 9.32: safety instructions are not U diagnostics; they run as on a controller whose
 safety I/O is not connected, so channels and input status read 0 unless the program (or
 `--set`) drives them. The state machine follows the documented behaviour of the Dual
-Channel Input Stop, in virtual milliseconds (`ctx.now_ms`):
+Channel Input Stop where we could check it, and decision 0075 where we could not; times
+are virtual milliseconds (`ctx.now_ms`):
 
 - A channel is active when it reads 1 (Equivalent - Active High) or, for a Complementary
   device, channel A reads 1 and channel B reads 0.
