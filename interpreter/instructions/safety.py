@@ -29,11 +29,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from stdlib import catalog
-
 from ..vm.context import ExecContext
 from .fbd_timers import _layout
 from .registry import implements, prescan
+from .safety_common import enum_value, mirror
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,6 +55,7 @@ class _Members:
         return cls(*(d[n] for n in names))
 
 
+STOP_L, MONITOR_L, START_L = _layout("DCI_STOP"), _layout("DCI_MONITOR"), _layout("DCI_START")
 DCS_M = _Members.of("DCI_STOP")
 DCM_M = _Members.of("DCI_MONITOR")
 DCSRT_M = _Members.of("DCI_START")
@@ -63,14 +63,8 @@ COLD = _layout("DCI_STOP")["COLDSTART"]
 ARMED = _layout("DCI_START")["ARMED"]
 
 
-def _code(enum: str, text: str) -> int:
-    v = catalog().enum(enum).lookup(text)
-    assert v is not None, (enum, text)
-    return v.value
-
-
-COMPLEMENTARY = _code("SAFETY_InputType", "Complementary")
-AUTOMATIC = _code("SAFETY_ResetType", "Automatic")
+COMPLEMENTARY = enum_value("SAFETY_InputType", "Complementary")
+AUTOMATIC = enum_value("SAFETY_ResetType", "Automatic")
 
 
 def _channels(input_type: int, a: object, b: object) -> tuple[bool, bool]:
@@ -156,6 +150,16 @@ def dcs(
     reset: object,
 ) -> None:
     m = DCS_M
+    mirror(
+        s,
+        STOP_L,
+        rung,
+        DiscrepancyTime=int(discrepancy_ms),
+        ChannelA=channel_a,
+        ChannelB=channel_b,
+        InputStatus=input_status,
+        Reset=reset,
+    )
     got = _front_end(
         ctx, rung, s, m, input_type, discrepancy_ms, channel_a, channel_b, input_status, reset
     )
@@ -208,6 +212,16 @@ def dcm(
     input_status: object,
     reset: object,
 ) -> None:
+    mirror(
+        s,
+        MONITOR_L,
+        rung,
+        DiscrepancyTime=int(discrepancy_ms),
+        ChannelA=channel_a,
+        ChannelB=channel_b,
+        InputStatus=input_status,
+        Reset=reset,
+    )
     got = _front_end(
         ctx, rung, s, DCM_M, input_type, discrepancy_ms, channel_a, channel_b, input_status, reset
     )
@@ -247,6 +261,16 @@ def dcsrt(
     reset: object,
 ) -> None:
     m = DCSRT_M
+    mirror(s, START_L, rung, DiscrepancyTime=int(discrepancy_ms), Enable=enable)
+    mirror(
+        s,
+        START_L,
+        rung,
+        ChannelA=channel_a,
+        ChannelB=channel_b,
+        InputStatus=input_status,
+        Reset=reset,
+    )
     got = _front_end(
         ctx, rung, s, m, input_type, discrepancy_ms, channel_a, channel_b, input_status, reset
     )
