@@ -13,6 +13,7 @@ O1 needs both channels to turn active (after being inactive together) while Enab
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from interpreter.cli import main
@@ -278,3 +279,26 @@ def test_dcs_backing_tag_shows_its_operands(tmp_path: Path) -> None:
     watch = ["d.EnableIn", "d.ChannelA", "d.ChannelB", "d.DiscrepancyTime"]
     rows, _ = trace(tmp_path, src, ".rll", 1, watch, period_ms=10.0)
     assert [int(rows[0][k]) for k in watch] == [1, 1, 0, 250]
+
+
+def test_export_with_safety_backing_tags_checks_and_runs(capsys) -> None:  # noqa: ANN001
+    # a GuardLogix-shaped export: decorated DCI_STOP data with Studio's members, a safety task
+    # running DCS and EPMS with nothing connected, standard logic reading the backing tags
+    fix = Path(__file__).parents[1] / "l5x" / "fixtures" / "safety_tags.L5X"
+    capsys.readouterr()
+    assert main(["check", str(fix)]) == 0
+    assert capsys.readouterr().out.strip() == "0 error(s), 0 warning(s)"
+    argv = ["run", str(fix), "--scans", "3", "--json"]
+    for w in ("Gate.O1", "Gate.FP", "Gate.FaultCode", "GateOk", "ModeFault"):
+        argv += ["--watch", w]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    # nothing connected: input status 0 -> DCS and EPMS both show their fault bit; no U304
+    assert report["tags"] == {
+        "Gate.O1": False,
+        "Gate.FP": True,
+        "Gate.FaultCode": 0,
+        "GateOk": False,
+        "ModeFault": True,
+    }
+    assert report["unsupported"] == [] and report["faults"] == []
