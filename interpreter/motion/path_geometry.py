@@ -242,6 +242,9 @@ def circle(
     Center Incremental (relative to the start when move_type is 1 Incremental, and always
     for Center Incremental), a number for Radius. With a Full direction the segment is one
     whole turn back to the start; `end` then only helps define the circle.
+
+    Operands the runtime rejects with ERR 13 first (ndim not 2 or 3, circle type or
+    direction out of range, arrays shorter than ndim) raise ValueError here.
     """
     if ndim not in (2, 3):
         raise ValueError(f"a circle needs 2 or 3 primary axes, not {ndim}")
