@@ -144,6 +144,20 @@ class Segment:
         p[s >= self.length] = self.end
         return p
 
+    def tolerance_point(self, distance: float) -> float:
+        """Arc length from which the straight distance to the end stays within `distance`.
+
+        The Command Tolerance point: on an arc the remaining angle phi is at most
+        2 asin(d / 2r) away (chord 2r sin(phi/2) <= d); a long arc or a full circle may be
+        within d at its start too, but leaves it again, so this is the last entry.
+        """
+        d = max(float(distance), 0.0)
+        if not self.is_arc:
+            return max(self.length - d, 0.0)
+        if d >= 2.0 * self.radius:
+            return 0.0
+        return max(self.length - 2.0 * self.radius * math.asin(d / (2.0 * self.radius)), 0.0)
+
     def tangent(self, s: np.ndarray) -> np.ndarray:
         """Unit tangents (len(s), ndim) in the direction of travel at arc lengths s."""
         s = np.clip(np.asarray(s, dtype=float).reshape(-1), 0.0, self.length)
@@ -476,6 +490,18 @@ class SegmentTable:
         done = s >= length
         p[done] = self.end[rows[done]]
         return p
+
+    def tolerance_points(self, rows: np.ndarray, distance: np.ndarray) -> np.ndarray:
+        """`Segment.tolerance_point` of many rows at once (distance per row or one value)."""
+        rows = np.asarray(rows, dtype=np.intp)
+        d = np.maximum(np.broadcast_to(np.asarray(distance, dtype=float), rows.shape), 0.0)
+        length = self.length[rows]
+        arc = self.arc[rows]
+        # radius of an arc row is |A| = |start - centre|; lines use the straight remainder
+        r = np.where(arc, np.linalg.norm(self.a[rows], axis=1), 1.0)
+        ratio = np.minimum(d / (2.0 * r), 1.0)
+        on_arc = np.where(ratio >= 1.0, length, 2.0 * r * np.arcsin(ratio))
+        return np.maximum(length - np.where(arc, on_arc, d), 0.0)
 
     def tangents(self, rows: np.ndarray, s: np.ndarray) -> np.ndarray:
         """Unit tangents (m, 3) of segments `rows` at arc lengths `s`."""

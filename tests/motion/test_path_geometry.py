@@ -669,3 +669,39 @@ def test_error_numbers_and_enumerations_are_the_catalogs() -> None:
         texts = {(v.text.lower().replace(" ", "_"), v.value) for v in cat.enum(cat_name).values}
         mine = {(name.lower(), int(m)) for name, m in enum.__members__.items()}
         assert mine == texts
+
+
+def test_tolerance_point_is_where_the_straight_distance_to_the_end_reaches_it() -> None:
+    # line (0,0) -> (3,4), length 5: within 1 of the end from s = 4
+    ln = line([0.0, 0.0], [3.0, 4.0])
+    assert ln.tolerance_point(1.0) == pytest.approx(4.0)
+    assert ln.tolerance_point(7.0) == 0.0
+    # quarter circle r = 10 CCW from (10, 0) to (0, 10): a chord of 10 spans 60 deg
+    # (2 * 10 * sin 30 = 10), so the point is 30 deg along: s = 10 * (pi/2 - pi/3) = 10 pi/6,
+    # at (10 cos 30, 10 sin 30) = (8.660, 5), whose distance to (0, 10) is sqrt(75 + 25) = 10
+    q = circle([10.0, 0.0], [0.0, 10.0], [0.0, 0.0], 1, 1, 2)
+    assert isinstance(q, Segment)
+    s = q.tolerance_point(10.0)
+    assert s == pytest.approx(10 * math.pi / 6)
+    np.testing.assert_allclose(np.linalg.norm(q.points(np.array([s]))[0] - q.end), 10.0)
+    # 15 is more than the chord (14.14): within it from the start
+    assert q.tolerance_point(15.0) == 0.0
+    # the 270 deg CW arc between the same points: 15 pi - 10 pi/3 (it is within 15 at the
+    # start too, but leaves it)
+    lg = circle([10.0, 0.0], [0.0, 10.0], [0.0, 0.0], 1, 0, 2)
+    assert isinstance(lg, Segment)
+    assert lg.tolerance_point(10.0) == pytest.approx(15 * math.pi - 10 * math.pi / 3)
+    assert lg.tolerance_point(15.0) == pytest.approx(15 * math.pi - 20 * math.asin(0.75))
+    # full circle r = 10: only a diameter (20) or more covers all of it
+    f = circle([10.0, 0.0], [10.0, 0.0], [0.0, 0.0], 1, 1, 2)
+    assert isinstance(f, Segment)
+    assert f.tolerance_point(10.0) == pytest.approx(20 * math.pi - 10 * math.pi / 3)
+    assert f.tolerance_point(20.0) == 0.0
+    # the table gives the same per row
+    table = SegmentTable.of([ln, q, lg, f])
+    got = table.tolerance_points(np.array([0, 1, 2, 3, 1]), np.array([1.0, 10.0, 10.0, 20.0, 15]))
+    np.testing.assert_allclose(
+        got,
+        [4.0, 10 * math.pi / 6, 15 * math.pi - 10 * math.pi / 3, 0.0, 0.0],
+        atol=1e-12,
+    )
