@@ -89,9 +89,12 @@ class GeometryError:
     detail: str
 
 
-@dataclass(slots=True, frozen=True)
+@dataclass(slots=True, frozen=True, eq=False)
 class Segment:
-    """One path piece: a line (radius 0, sweep 0) or a circular arc, by arc length."""
+    """One path piece: a line (radius 0, sweep 0) or a circular arc, by arc length.
+
+    Compared by identity (eq=False): its fields are numpy arrays.
+    """
 
     start: np.ndarray  # (ndim,)
     end: np.ndarray  # (ndim,) where the motion ends (the start again for a full circle)
