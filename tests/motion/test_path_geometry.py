@@ -705,3 +705,72 @@ def test_tolerance_point_is_where_the_straight_distance_to_the_end_reaches_it() 
         [4.0, 10 * math.pi / 6, 15 * math.pi - 10 * math.pi / 3, 0.0, 0.0],
         atol=1e-12,
     )
+
+
+# ------------------------------------------------------------------ random circles
+# Circles generated from a known centre, radius, plane and angles; the geometry must give
+# them back. 200 seeded cases each, angles at least 0.05 rad apart.
+
+
+def _on(c: np.ndarray, r: float, e1: np.ndarray, e2: np.ndarray, t: float) -> np.ndarray:
+    return c + r * (math.cos(t) * e1 + math.sin(t) * e2)
+
+
+def _random_frame(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    while True:
+        a, b = rng.normal(size=3), rng.normal(size=3)
+        e1 = a / np.linalg.norm(a)
+        b = b - (b @ e1) * e1
+        if np.linalg.norm(b) > 0.1:
+            return e1, b / np.linalg.norm(b)
+
+
+def test_random_3d_via_circles_come_back() -> None:
+    rng = np.random.default_rng(120)
+    for _ in range(200):
+        c = rng.uniform(-100, 100, 3)
+        r = float(rng.uniform(0.05, 100))
+        e1, e2 = _random_frame(rng)
+        t_via = float(rng.uniform(0.05, 2 * math.pi - 0.1))
+        t_end = float(rng.uniform(t_via + 0.05, 2 * math.pi - 0.05))
+        seg = circle(
+            _on(c, r, e1, e2, 0), _on(c, r, e1, e2, t_end), _on(c, r, e1, e2, t_via), 0, 0, 3
+        )
+        assert isinstance(seg, Segment)
+        tol = 1e-6 * max(r, 1.0)
+        np.testing.assert_allclose(seg.centre, c, rtol=0, atol=tol)
+        assert seg.radius == pytest.approx(r, rel=1e-6)
+        assert seg.sweep == pytest.approx(t_end, rel=1e-6)
+        np.testing.assert_allclose(seg.normal, np.cross(e1, e2), atol=1e-6)
+        s = np.linspace(0, seg.length, 101)
+        np.testing.assert_allclose(
+            seg.points(s),
+            np.array([_on(c, r, e1, e2, t) for t in t_end * s / seg.length]),
+            atol=tol,
+        )
+        assert seg.points(np.array([seg.length]))[0].tolist() == _on(c, r, e1, e2, t_end).tolist()
+
+
+def test_random_2d_radius_arcs_follow_sign_and_direction() -> None:
+    rng = np.random.default_rng(121)
+    for _ in range(200):
+        p0 = rng.uniform(-100, 100, 2)
+        p1 = rng.uniform(-100, 100, 2)
+        half = float(np.linalg.norm(p1 - p0)) / 2
+        radius = float(rng.uniform(1.0, 3.0)) * half * float(rng.choice([-1.0, 1.0]))
+        direction = int(rng.integers(0, 2))
+        seg = circle(p0, p1, radius, 2, direction, 2)
+        assert isinstance(seg, Segment)
+        # through both points with radius |R|
+        assert seg.radius == pytest.approx(abs(radius), rel=1e-9)
+        assert np.linalg.norm(p1 - seg.centre) == pytest.approx(abs(radius), rel=1e-9)
+        # sense from the direction (CW < 0, CCW > 0), size from the sign (R > 0 up to a
+        # half turn, R < 0 at least a half turn)
+        assert (seg.sweep > 0) == (direction == 1)
+        if radius > 0:
+            assert abs(seg.sweep) <= math.pi
+        else:
+            assert abs(seg.sweep) >= math.pi
+        # the chord subtends 2 asin(half / |R|) on the short side
+        short = 2 * math.asin(half / abs(radius))
+        assert abs(seg.sweep) == pytest.approx(short if radius > 0 else 2 * math.pi - short)
