@@ -317,12 +317,10 @@ def _via_circle(
             CircleError.CIRCULAR_COLLINEARITY, "start, via and end points are on one line"
         )
     n /= nn
-    # circumcentre: equidistant from p0, via, p1 and in their plane
-    # c = p0 + (|a|^2 (b x n') ... ) written with n' = a x b (unnormalised):
-    axb = np.cross(a, b)
-    c = p0 + (float(a @ a) * np.cross(b, axb) + float(b @ b) * np.cross(axb, a)) / (
-        2.0 * float(axb @ axb)
-    )
+    # circumcentre (equidistant from p0, via, p1, in their plane), with w = a x b:
+    # c = p0 + (|a|^2 (b x w) + |b|^2 (w x a)) / (2 |w|^2)
+    w = np.cross(a, b)
+    c = p0 + (float(a @ a) * np.cross(b, w) + float(b @ b) * np.cross(w, a)) / (2.0 * float(w @ w))
     r = float(np.linalg.norm(p0 - c))
     if r < MIN_RADIUS:
         return GeometryError(CircleError.CIRCULAR_SMALL_R, f"radius {r:g} is below 0.001")
