@@ -43,6 +43,7 @@ from interpreter.motion.homing import HomingSet, home
 from interpreter.motion.links import LinkTable, MasterLink, assign_master
 from interpreter.motion.moves import (
     change_dynamics,
+    check_rotary_move,
     end_gen,
     generator_profile,
     running_limits,
@@ -165,6 +166,7 @@ class MotionGroup:
     generator_profile = generator_profile
     running_limits = running_limits
     start_move = start_move
+    check_rotary_move = check_rotary_move
     start_jog = start_jog
     stop = stop
     stop_group = stop_group

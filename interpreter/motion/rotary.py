@@ -53,3 +53,17 @@ def travel_array(new: np.ndarray, old: np.ndarray, unwind: np.ndarray) -> np.nda
         return d
     u = np.where(rot, unwind, 1.0)
     return np.where(rot, d - u * np.floor(d / u + 0.5), d)
+
+
+def rotary_travel(move_type: int, target: float, current: float, unwind: float) -> float:
+    """Travel of a rotary move type (MAM 2, 3, 4) from `current` to `target`, both in
+    [0, unwind): Shortest Path goes the short way (half a turn: forward), Positive only
+    forward, Negative only in reverse; each less than one revolution, 0 when there."""
+    ahead = math.fmod(target - current, unwind)
+    if ahead < 0.0:
+        ahead += unwind
+    if move_type == 2:
+        return ahead - unwind if ahead > unwind / 2 else ahead
+    if move_type == 3:
+        return ahead
+    return ahead - unwind if ahead > 0.0 else 0.0
