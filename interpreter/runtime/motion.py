@@ -426,8 +426,8 @@ class MotionRuntime:
         if len(g.average_velocity) != n_axes:
             g.average_velocity = np.zeros(n_axes)
         columns = {
-            "ACTUALPOSITION": lambda: core.actual_position,
-            "COMMANDPOSITION": lambda: core.command_position,
+            "ACTUALPOSITION": lambda: _on_circle(core.actual_position, core.unwind),
+            "COMMANDPOSITION": lambda: _on_circle(core.command_position, core.unwind),
             "ACTUALVELOCITY": lambda: core.actual_velocity,
             "COMMANDVELOCITY": lambda: core.command_velocity,
             "ACTUALACCELERATION": lambda: g.actual_accel,
@@ -587,6 +587,16 @@ def _collect_words(node: object, out: set[str]) -> None:
                 value = getattr(x, f.name)
                 if isinstance(value, str):
                     out.add(value.upper())
+
+
+def _on_circle(pos: np.ndarray, unwind: np.ndarray) -> np.ndarray:
+    """Positions as the REAL tag shows them: a rotary position just below the unwind
+    that float32 rounds up to the unwind itself is shown as 0, so the tag stays in
+    [0, unwind) too (decision 0115)."""
+    if not unwind.any():
+        return pos
+    up = (unwind > 0.0) & (pos.astype(np.float32) >= unwind.astype(np.float32))
+    return np.where(up, 0.0, pos) if up.any() else pos
 
 
 def _limit(x: float) -> float:
