@@ -267,7 +267,7 @@ class MotionRuntime:
 
     def track(self, g: Group, handle: int, tracked: Tracked) -> None:
         g.tracked[handle] = tracked
-        if tracked.link:
+        if tracked.link and handle not in g.links:
             g.links.append(handle)
         self.own(tracked.control, g, handle)
 
@@ -346,7 +346,7 @@ class MotionRuntime:
         elif k is EventKind.COMPLETE or k is EventKind.ENDED:
             self.count(tr, -1)
             del g.tracked[ev.handle]
-            if tr.link:
+            if ev.handle in g.links:
                 g.links.remove(ev.handle)
             if tr.on_end is not None:
                 tr.on_end(g, k is EventKind.COMPLETE)
@@ -380,7 +380,7 @@ class MotionRuntime:
         in_use = None
         for h in g.links:
             tr = g.tracked[h]
-            if tr.control[AC] and self.owns(tr.control, g, h):
+            if tr.link and tr.control[AC] and self.owns(tr.control, g, h):
                 if in_use is None:
                     in_use = g.core.links_in_use()
                 if h not in in_use:
