@@ -352,3 +352,19 @@ def test_reverse_watch_position_crossed_by_the_wrap(mp) -> None:
     tr = mp.trace(src, ["c2.PC", "c2.ER", "R.ActualPosition"], scans=50)
     assert tr.at(0.0, "c2.ER") == 0
     assert tr.first("c2.PC", lambda v: v == 1) == pytest.approx(0.004, abs=1e-9)
+
+
+def test_redefine_and_home_onto_the_circle(mp) -> None:
+    # MRP absolute 725 at scan 0 (the update t0): 725 mod 360 = 5; MAH passive with
+    # HomePosition 400 at scan 100 (the update 0.1): 400 mod 360 = 40. Nothing moves.
+    src = prog(
+        f"  H : AXIS_VIRTUAL := (RotaryAxis := 1, PositionUnwind := 360.0, HomeMode := 0, HomePosition := 400.0, {DYN});\n",
+        "IF k = 0 THEN MRP(R, c1, absolute, actual, 725.0); END_IF;\n"
+        "IF k = 100 THEN MAH(H, c2); END_IF;",
+    )
+    watch = ["R.ActualPosition", "R.CommandPosition", "H.ActualPosition", "c1.DN", "c2.PC"]
+    tr = mp.trace(src, watch, scans=200)
+    assert tr.at(0.002, "c1.DN") == 1 and tr.at(0.102, "c2.PC") == 1
+    assert tr.at(0.002, "R.ActualPosition") == pytest.approx(5.0, abs=F32)
+    assert tr.at(0.002, "R.CommandPosition") == pytest.approx(5.0, abs=F32)
+    assert tr.at(0.102, "H.ActualPosition") == pytest.approx(40.0, abs=F32)
