@@ -51,6 +51,11 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
+from interpreter.motion.outputcams import (
+    OutputCamProcessSet,
+    arm_output_cam,
+    disarm_output_cam,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -138,6 +143,7 @@ class MotionGroup:
         self._links = LinkTable()  # MDAC master assignments
         self._gears = GearSet()
         self._homing = HomingSet()
+        self.output_cams = OutputCamProcessSet(self)  # MAOC/MDOC: after the axes moved
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
@@ -146,6 +152,7 @@ class MotionGroup:
             self.watch,
             self._homing,
             self._links,
+            self.output_cams,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
 
@@ -166,6 +173,8 @@ class MotionGroup:
     arm_registration = arm_registration
     disarm_registration = disarm_registration
     change_dynamics = change_dynamics
+    arm_output_cam = arm_output_cam
+    disarm_output_cam = disarm_output_cam
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""
