@@ -88,7 +88,6 @@ class _Binding:
     words: dict[tuple[int, int], _Words] = field(default_factory=dict)
     # compensation arrays by identity: (the array, its last values, the targets using it)
     comps: dict[int, tuple[ArrayRef, list, set[tuple[int, int]]]] = field(default_factory=dict)
-    status_dirty: bool = True
     # exact switch instants of watched Output words: (container id, key) -> edges
     edge_log: dict[tuple[int, int], list[Edge]] = field(default_factory=dict)
 
@@ -146,13 +145,13 @@ class _Binding:
                     log = self.edge_log.get((id(w.output.container), w.output.key))
                     if log is not None:
                         log.append(e)
-        if step.events or self.status_dirty or any(t.transition for t in targets.values()):
+        if ps.core.status_changed:
             self.write_status()
 
     def write_status(self) -> None:
         """The four per-target words of every axis that has output cams."""
-        self.status_dirty = False
         core = self.g.core.output_cams.core
+        core.status_changed = False
         words: dict[int, list[int]] = {}
         for (a, tg), t in core.targets.items():
             acc = words.setdefault(a, [0, 0, 0, 0])

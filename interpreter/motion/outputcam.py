@@ -171,6 +171,9 @@ class OutputCamSet:
         self._bank: _Bank | None = None
         self._dirty = True  # cams, their lock/range state or a compensation changed
         self.batch = batch  # False: every cam through the exact path (tests compare both)
+        # a target's armed/pending/lock/transition state changed (the status words); the
+        # binding clears it when it has written them
+        self.status_changed = True
 
     def _quiet(
         self,
@@ -266,7 +269,9 @@ class OutputCamSet:
         for i in np.flatnonzero(~busy_cam).tolist():
             t = rows[i]
             cams[i].c = float(c_new[i])
-            t.transition = False
+            if t.transition:
+                t.transition = False
+                self.status_changed = True
             done.add(id(t))
         return done
 
@@ -308,6 +313,7 @@ class OutputCamSet:
         if compensation is not None:
             t.compensation = compensation
         self._dirty = True
+        self.status_changed = True
         if sched == OutputCamExecutionSchedule.PENDING and busy:
             if t.pending is not None:  # a later pending MAOC replaces an earlier one
                 t.dropped.append(t.pending.handle)
@@ -332,6 +338,7 @@ class OutputCamSet:
         whose MAOC ends (IP cleared)."""
         ended: list[int] = []
         self._dirty = True
+        self.status_changed = True
         for (a, tg), t in self.targets.items():
             if a != axis or (disarm_type == DisarmType.SPECIFIC and tg != target):
                 continue
@@ -394,8 +401,10 @@ class OutputCamSet:
             if id(t) in quiet:
                 continue
             before = _signature(t)
+            was = t.transition
             if t.cam is None and t.request is None:
                 t.transition = False
+                self.status_changed |= was
                 for h in t.dropped:
                     step.events.append(OutputCamEvent(h, ENDED, t0))
                 t.dropped.clear()
@@ -403,6 +412,9 @@ class OutputCamSet:
             _advance(self, t, t0, dt, start, end, unwind, velocity, time_of, step)
             if _signature(t) != before:
                 self._dirty = True
+                self.status_changed = True
+            elif t.transition != was:
+                self.status_changed = True
         return step
 
 
