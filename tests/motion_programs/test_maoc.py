@@ -403,15 +403,17 @@ def test_pending_and_transition_status_words(mp) -> None:
 
 
 # ----------------------------------------------------------------- narrow window
+NARROW = cam_decl("cam", el(left=3.06, right=3.11))
+
+
 def test_narrow_window_switches_once_per_pass_within_a_microsecond(mp) -> None:
-    # [0, 10] continuous, window [3.02, 3.07]: 0.05 units wide, half of the 0.1 units the
-    # axis travels per coarse update; one pass per 0.1 s: on at tf(3.02 + 10 k), off at
-    # tf(3.07 + 10 k), both inside one update
-    tags = run(mp, cam_decl("cam", el(left=3.02, right=3.07)), {0: JOG + maoc(end=10.0)},
-               ["outw.0@edges", "outw"], 1000)  # fmt: skip
+    # [0, 10] continuous, window [3.06, 3.11]: 0.05 units wide, half of the 0.1 units the
+    # axis travels per coarse update; one pass per 0.1 s: on at tf(3.06 + 10 k) = 0.0321 +
+    # 0.1 k, off at tf(3.11 + 10 k) = 0.0326 + 0.1 k, both inside the update ending 0.033
+    tags = run(mp, NARROW, {0: JOG + maoc(end=10.0)}, ["outw.0@edges", "outw"], 1000)
     expected = []
     for k in range(10):
-        expected += [(tf(3.02 + 10 * k), 1), (tf(3.07 + 10 * k), 0)]
+        expected += [(tf(3.06 + 10 * k), 1), (tf(3.11 + 10 * k), 0)]
     assert_edges(tags["outw.0@edges"], expected)
 
 
@@ -588,3 +590,54 @@ def test_maoc_in_a_ladder_rung(mp) -> None:
     tags = json.loads(out)["tags"]
     assert_edges(tags["outw.4@edges"], [(0.1015, 1), (0.2115, 0)])
     assert (tags["arm.PC"], tags["arm.EN"]) == (True, True)
+
+
+# ----------------------------------------------------------------- sub-tick edges (0113)
+
+
+def test_trace_cells_hold_the_edges_of_the_scan(mp) -> None:
+    prog = mp.tmp / "prog.st"
+    prog.write_text(head(NARROW) + NARROW + "END_VAR\n"
+                    f"IF k = 0 THEN {JOG} {maoc(end=10.0)} END_IF;\nk := k + 1;\n")  # fmt: skip
+    out = mp.tmp / "t.csv"
+    from interpreter.cli import main
+
+    mp.capsys.readouterr()
+    code = main(["run", str(prog), "--scans", "250", "--coarse-update", "1", "--trace", str(out),
+                 "--watch", "outw", "--watch", "outw.0@edges", "--watch", "OUTW@Edges"])  # fmt: skip
+    assert code == 0
+    import csv
+
+    rows = list(csv.reader(out.open()))
+    assert rows[0] == ["time", "outw", "outw.0@edges", "OUTW@Edges"]
+    cells = {r[0]: (r[2], r[3]) for r in rows[1:] if r[2]}
+    # tf(3.06) = 0.0321 and tf(3.11) = 0.0326: both in the update 0.033, shown in the row
+    # of the scan 0.033; the word itself never shows the pulse
+    assert list(cells) == ["0.033", "0.133", "0.233"]
+    assert {r[1] for r in rows[1:]} == {"0"}
+    bit, both = cells["0.033"]
+    # TIME:VALUE per edge (TIME:BIT:VALUE for the word); Left/Right are REAL, so the
+    # instants are those of the float32 window edges, within 1 µs of the closed form
+    assert [c.rsplit(":", 1)[1] for c in bit.split()] == ["1", "0"]
+    for cell, te in zip(bit.split(), (tf(3.06), tf(3.11)), strict=True):
+        assert abs(float(cell.split(":")[0]) - te) <= US and len(cell.split(":")[0]) == 11
+    assert [c.split(":", 1)[1] for c in both.split()] == ["0:1", "0:0"]
+
+
+def test_edges_of_a_real_tag_is_a_usage_error(mp) -> None:
+    code, _, err = mp.run(head("") + "  r : REAL;\nEND_VAR\nk := k + 1;\n",
+                          ["--scans", "2", "--watch", "r@edges"])  # fmt: skip
+    assert code == 2 and "@edges" in err and "Traceback" not in err
+
+
+def test_plot_draws_an_edges_lane(mp, tmp_path) -> None:
+    pytest.importorskip("matplotlib")
+    png = tmp_path / "oc.png"
+    code, _, err = mp.run(
+        head(NARROW) + NARROW + "END_VAR\n"
+        f"IF k = 0 THEN {JOG} {maoc(end=10.0)} END_IF;\nk := k + 1;\n",
+        ["--scans", "300", "--coarse-update", "1", "--plot", str(png), "--watch",
+         "A.ActualPosition", "--watch", "outw.0", "--watch", "outw.0@edges"],
+    )  # fmt: skip
+    assert code == 0, err
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
