@@ -227,16 +227,23 @@ class OutputCamSet:
         if not b.rows:
             return b.others
         c = b.c
-        x0 = start[b.ref, b.axis]
-        dx = end[b.ref, b.axis] - x0
-        if unwind is not None and b.any_unwind:
-            u = unwind[b.axis]
-            dx = np.where(u > 0, (dx + u / 2) % np.where(u > 0, u, 1.0) - u / 2, dx)
-        v = velocity[b.ref, b.axis] if velocity is not None else dx / dt
+        ref, axis = b.ref, b.axis
+        x0 = start[ref, axis]
+        dx = end[ref, axis] - x0
+        if unwind is not None:
+            u = unwind[axis]
+            if u.any():
+                dx = np.where(u > 0, (dx + u / 2) % np.where(u > 0, u, 1.0) - u / 2, dx)
         cb = c + dx
-        tol = np.abs(v - b.vref) * b.maxd  # nan vref: never quiet
-        quiet = (np.minimum(c, cb) - tol > b.gap_lo) & (np.maximum(c, cb) + tol < b.gap_hi)
-        quiet &= (cb >= b.start) & (cb <= b.end) & (b.t_due > t0 + dt)
+        low, high = np.minimum(c, cb), np.maximum(c, cb)
+        if b.any_delay:  # how far a velocity change moves the levels (nan vref: not quiet)
+            v = velocity[ref, axis] if velocity is not None else dx / dt
+            tol = np.abs(v - b.vref) * b.maxd
+            low -= tol
+            high += tol
+        quiet = (low > b.gap_lo) & (high < b.gap_hi) & (cb >= b.start) & (cb <= b.end)
+        if b.any_due:
+            quiet &= b.t_due > t0 + dt
         for i in b.enable_rows:  # the program (or the cam) changed an enable word
             t = b.rows[i]
             cam = t.cam
@@ -438,15 +445,18 @@ class _Bank:
         self.gap_lo = np.array([c.gap_lo for c in cams])
         self.gap_hi = np.array([c.gap_hi for c in cams])
         self.t_due = np.array([-math.inf if c.pulsing else c.t_due for c in cams])
+        # nan vref (never evaluated) must also fail the test: a nan tolerance does that
         self.maxd = np.array([_max_delay(t) for t in rows])
+        self.any_delay = bool(self.maxd.any()) or bool(np.isnan(self.vref).any())
         self.simple = [_Simple.of(t) for t in rows]
         for i, sim in enumerate(self.simple):  # their quiet interval does not need v
             cam = cams[i]
             if sim is not None and not cam.sync_inside and not rows[i].transition:
                 self.gap_lo[i], self.gap_hi[i] = sim.gap(cam.c, cam)
                 self.vref[i] = 0.0
-        self.any_unwind = True
+        self.any_due = bool((self.t_due < math.inf).any())  # a duration or a pulse train
         self.enable_rows = [i for i, c in enumerate(cams) if _uses_enable(c.req.elements)]
+        self.any_delay = bool(self.maxd.any()) or bool(np.isnan(self.vref).any())
 
     def reload(self, t: OutputCamTarget) -> None:
         """A cam of the bank was evaluated exactly: take its new position and interval."""
@@ -458,7 +468,9 @@ class _Bank:
         self.vref[i] = cam.vref
         self.gap_lo[i] = cam.gap_lo
         self.gap_hi[i] = cam.gap_hi
-        self.t_due[i] = -math.inf if cam.pulsing else cam.t_due
+        self.t_due[i] = due = -math.inf if cam.pulsing else cam.t_due
+        self.any_due |= due < math.inf
+        self.any_delay |= math.isnan(cam.vref)
 
     def store(self) -> None:
         """Hand the cam positions back to the cams (before a rebuild)."""
@@ -473,11 +485,13 @@ class _Simple:
     no delays and a Normal or Inverted mode: its levels do not depend on the velocity, so
     crossings are found by bisection in the sorted levels (decision 0114)."""
 
-    lo: list[float]  # sorted latch levels (forward) ...
+    lo: list[float]  # sorted left levels (forward latch) ...
     lo_el: list[int]  # ... and their elements
     hi: list[float]
     hi_el: list[int]
     period: float  # the range span for a continuous cam, else inf
+    bit: list[int]  # output bit of each element
+    by_bit: dict[int, list[int]]  # elements of each bit
 
     @staticmethod
     def of(t: OutputCamTarget) -> _Simple | None:
@@ -499,33 +513,39 @@ class _Simple:
             return None
         start, end = cam.req.cam_start, cam.req.cam_end
         period = math.inf
+        elems = np.arange(len(el))
         if cam.periodic:
-            # replicated levels stay outside the range only if the levels lie strictly inside
-            if not ((lo > start) & (hi < end)).all():
-                return None
+            # a continuous cam's levels repeat every span: the copies one span below and
+            # above cover every crossing inside the range when the levels lie within a span
+            # of it (the values are computed as _levels computes them)
             period = end - start
+            if not ((lo >= start - period) & (hi <= end + period)).all():
+                return None
+            lo = np.concatenate((lo + -1 * period, lo, lo + 1 * period))
+            hi = np.concatenate((hi + -1 * period, hi, hi + 1 * period))
+            elems = np.tile(elems, 3)
         lo_order = np.argsort(lo, kind="stable")
         hi_order = np.argsort(hi, kind="stable")
+        bits = [int(x) for x in b.tolist()]
+        by_bit: dict[int, list[int]] = {}
+        for e, bit in enumerate(bits):
+            by_bit.setdefault(bit, []).append(e)
         return _Simple(
-            lo[lo_order].tolist(), lo_order.tolist(), hi[hi_order].tolist(), hi_order.tolist(),
-            period,
+            lo[lo_order].tolist(), elems[lo_order].tolist(), hi[hi_order].tolist(),
+            elems[hi_order].tolist(), period, bits, by_bit,
         )  # fmt: skip
 
     def gap(self, c: float, cam: _Cam) -> tuple[float, float]:
         """The quiet interval around cam position c: the nearest levels at or below / above."""
         below = -math.inf
         above = math.inf
-        for levels in (self.lo, self.hi):
+        for levels in (self.lo, self.hi):  # (with their copies a span away when continuous)
             k = bisect_right(levels, c)
             if k:
                 below = max(below, levels[k - 1])
-            elif math.isfinite(self.period):
-                below = max(below, levels[-1] - self.period)
             k = bisect_left(levels, c)
             if k < len(levels):
                 above = min(above, levels[k])
-            elif math.isfinite(self.period):
-                above = min(above, levels[0] + self.period)
         return below, above
 
 
@@ -561,6 +581,13 @@ def _simple_step(
     if not found:
         return
     found.sort()
+    bit_of = sim.bit
+    # elements on per bit before the switches (only the bits concerned)
+    counts = {}
+    for e, _, _, _ in found:
+        b = bit_of[e]
+        if b not in counts:
+            counts[b] = sum(1 for x in sim.by_bit[b] if cam.on[x])
     switches: list[tuple[float, int, int, bool]] = []
     on = cam.on
     inside = cam.inside
@@ -581,7 +608,31 @@ def _simple_step(
                 seq += 1
     if not switches:
         return
-    word, written = _bits(t, cam, switches, t0, t0 + dx / dx * dt, t.output, step)
+    # _bits for Normal/Inverted bits without pulses: OR per bit, then the mode
+    writes: list[tuple[float, int, int, bool]] = []
+    order = 0
+    mode = t.compensation.mode
+    for when, _, e, now_on in sorted(switches):
+        b = bit_of[e]
+        before = counts[b] > 0
+        counts[b] += 1 if now_on else -1
+        after = counts[b] > 0
+        if before == after:
+            continue
+        cam.active[b] = after
+        if after:
+            cam.pulse_origin[b] = when
+        writes.append((when, order, b, after if mode[b] == _M_NORMAL else not after))
+        order += 1
+    word = t.output
+    written = 0
+    for when, _, b, value in sorted(writes):
+        mask = 1 << b
+        if bool(word & mask) == value and not _zero_width(writes, b, when):
+            continue
+        word = (word | mask) if value else (word & ~mask)
+        written |= mask
+        step.edges.append(Edge(t.axis, t.target, b, float(when), bool(value)))
     if written:
         key = (t.axis, t.target)
         step.changed[key] = step.changed.get(key, 0) | written
