@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..motion import MotionError
-from ..motion.outputcam import ArmRequest, Edge
+from ..motion.outputcam import ArmRequest, Edge, OutputCamTarget
 from ..motion.outputcam_tables import (
     DisarmType,
     OutputCamExecutionMode,
@@ -90,8 +90,11 @@ class _Binding:
     comps: dict[int, tuple[ArrayRef, list, set[tuple[int, int]]]] = field(default_factory=dict)
     # exact switch instants of watched Output words: (container id, key) -> edges
     edge_log: dict[tuple[int, int], list[Edge]] = field(default_factory=dict)
+    # (core target, Output storage, index, Input storage, index) per bound target
+    _reads: list[tuple[OutputCamTarget, list, int, list, int]] | None = None
 
     def bind(self, key: tuple[int, int], w: _Words) -> None:
+        self._reads = None
         old = self.words.get(key)
         if old is not None:
             self._unuse(key, old.compensation)
@@ -110,18 +113,22 @@ class _Binding:
                 del self.comps[id(arr.elements)]
 
     def before_update(self) -> None:
-        core = self.g.core.output_cams.core
-        targets = core.targets
-        for key, w in self.words.items():
-            t = targets.get(key)
-            if t is not None:
-                t.output = int(w.output.container[w.output.key])
-                t.input = int(w.input.elements[w.input.start])
+        reads = self._reads
+        if reads is None:
+            targets = self.g.core.output_cams.core.targets
+            reads = self._reads = [
+                (targets[key], w.output.container, w.output.key, w.input.elements, w.input.start)
+                for key, w in self.words.items()
+                if key in targets
+            ]
+        for t, out, at, inp, start in reads:
+            t.output = out[at]
+            t.input = inp[start]
         for arr, snap, keys in self.comps.values():
-            now = _snapshot(arr)
-            if now != snap:  # compensation changes take effect at once (issue 11)
-                snap[:] = now
+            if arr.elements[arr.start :] != snap:  # changes take effect at once (issue 11)
+                snap[:] = _snapshot(arr)
                 comp, _ = check_compensation(_columns(arr, _COMP_MEMBERS))
+                core = self.g.core.output_cams.core
                 for a, tg in keys:
                     core.set_compensation(a, tg, comp)
 
