@@ -43,6 +43,7 @@ from interpreter.motion.homing import HomingSet, home
 from interpreter.motion.links import LinkTable, MasterLink, assign_master
 from interpreter.motion.moves import (
     change_dynamics,
+    check_rotary_move,
     end_gen,
     generator_profile,
     running_limits,
@@ -57,6 +58,7 @@ from interpreter.motion.outputcams import (
     disarm_output_cam,
 )
 from interpreter.motion.process import Ending, EndReason, ProcessSet
+from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
 from stdlib import catalog
@@ -129,6 +131,12 @@ class MotionGroup:
         self.watch = WatchSet()  # MAW watch-position events
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
+        # Rotary axes (decision 0115): unwind per axis, position units per revolution; 0.0
+        # is a linear axis. Command and actual positions of a rotary axis stay in
+        # [0, unwind): both are wrapped at the end of every update, before the sets'
+        # end_update; differences of positions go through rotary.travel (short way round).
+        self.unwind = np.zeros(0)
+        self._rotary = np.zeros(0, dtype=np.intp)  # indices of the rotary axes
         self._alpha = np.zeros(0)
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
@@ -165,6 +173,7 @@ class MotionGroup:
     generator_profile = generator_profile
     running_limits = running_limits
     start_move = start_move
+    check_rotary_move = check_rotary_move
     start_jog = start_jog
     stop = stop
     stop_group = stop_group
@@ -194,8 +203,9 @@ class MotionGroup:
         max_decel: float = 1000.0,
         max_accel_jerk: float = math.inf,
         max_decel_jerk: float = math.inf,
+        unwind: float = 0.0,
     ) -> int:
-        """Add an axis (before running); returns its index."""
+        """Add an axis (before running); returns its index. unwind > 0: a rotary axis."""
         self.axes.append(
             AxisConfig(name, kind, max_speed, max_accel, max_decel, max_accel_jerk, max_decel_jerk)
         )
@@ -210,13 +220,25 @@ class MotionGroup:
         self.direct_drive = np.append(self.direct_drive, False)
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
+        self.unwind = np.append(self.unwind, 0.0)
         self._alpha = lag_alpha(self.tau, self.cup)
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
         for name_ in STATUS_BITS:
             self.status[name_] = np.zeros(len(self.axes), dtype=bool)
         self.status["ServoActionStatus"] = self.servo_on.copy()
+        self.set_unwind(len(self.axes) - 1, unwind)
         return len(self.axes) - 1
+
+    def set_unwind(self, axis: int, unwind: float) -> None:
+        """Make the axis rotary with this unwind (position units per revolution), or
+        linear with 0; its positions are wrapped into [0, unwind) at once."""
+        if not (math.isfinite(unwind) and unwind >= 0.0):
+            raise ValueError("unwind must be finite and >= 0")
+        self.unwind[axis] = unwind
+        self._rotary = np.flatnonzero(self.unwind > 0.0)
+        self.command_position[axis] = wrap(float(self.command_position[axis]), unwind)
+        self.actual_position[axis] = wrap(float(self.actual_position[axis]), unwind)
 
     def axis_index(self, name: str) -> int:
         for i, a in enumerate(self.axes):
@@ -226,8 +248,9 @@ class MotionGroup:
 
     def set_position(self, axis: int, position: float) -> None:
         """Redefine command and actual position (for set-up and MRP-like use)."""
-        self.command_position[axis] = position
-        self.actual_position[axis] = position
+        u = float(self.unwind[axis])
+        self.command_position[axis] = wrap(position, u)
+        self.actual_position[axis] = wrap(position, u)
 
     def motion_status_word(self) -> np.ndarray:
         """MotionStatus DINT bits per axis from the status arrays."""
@@ -363,7 +386,9 @@ class MotionGroup:
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
     ) -> MasterClock:
         ref = self.effective_reference(link.master, link.reference)
-        return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
+        clock = MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
+        clock.unwind = float(self.unwind[link.master])
+        return clock
 
     def master_state(self, clock: MasterClock) -> tuple[float, float]:
         m = clock.master
@@ -398,8 +423,9 @@ class MotionGroup:
     def shift_position(self, axis: int, delta: float) -> None:
         """Add delta to the axis's positions; whatever follows this axis as a master keeps
         counting travel, not positions, so its slaves do not see the jump."""
-        self.command_position[axis] += delta
-        self.actual_position[axis] += delta
+        u = float(self.unwind[axis])
+        self.command_position[axis] = wrap(float(self.command_position[axis]) + delta, u)
+        self.actual_position[axis] = wrap(float(self.actual_position[axis]) + delta, u)
         self.shift[axis] += delta
         for ps in self._sets:
             ps.shift_master(axis, delta)
@@ -481,6 +507,7 @@ class MotionGroup:
         positions = (self.actual_position, self.command_position)
         velocities = (self.actual_velocity, self.command_velocity)
         single = self._max_level == 0
+        rot = len(self._rotary) > 0
         for lvl in range(self._max_level + 1):
             sel = None if single else (self._level, lvl)
             parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
@@ -497,8 +524,17 @@ class MotionGroup:
             else:
                 self.command_velocity[idx] = 0.0
                 self.command_acceleration[idx] = 0.0
+            if rot:  # the servo follows the command the short way round the wrap
+                self._align_actual()
             servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
-            self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
+            if rot:
+                moved = travel_array(self.actual_position, prev_actual, self.unwind)
+                self.actual_velocity[idx] = moved[idx] / cup
+            else:
+                self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
+        if rot:
+            wrap_array(self.command_position, self.unwind, self._rotary)
+            wrap_array(self.actual_position, self.unwind, self._rotary)
         for ps in sets:
             ps.end_update(self.actual_position, ev)
         post, self._post = self._post, []
@@ -511,6 +547,14 @@ class MotionGroup:
         self.updates += 1
         self._update_status()
         return [MotionEvent(h, k, a) for h, k, a in ev]
+
+    def _align_actual(self) -> None:
+        """Put each rotary axis's actual position within half an unwind of its command
+        (the command may have crossed the wrap since both were last wrapped)."""
+        r, u = self._rotary, self.unwind[self._rotary]
+        cmd, act = self.command_position[r], self.actual_position[r]
+        d = cmd - act
+        self.actual_position[r] = cmd - (d - u * np.floor(d / u + 0.5))
 
     def _update_status(self) -> None:
         n = len(self.axes)

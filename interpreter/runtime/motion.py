@@ -18,6 +18,7 @@ from typing import Protocol
 import numpy as np
 
 from ..motion import STATUS_BITS, AxisKind, CamProfile, EventKind, MotionEvent, MotionGroup
+from ..motion.rotary import travel_array
 from ..semantics.locate import walk
 from ..semantics.program import ProgramModel
 from ..semantics.types import ArrayType, StructType, is_axis
@@ -56,6 +57,7 @@ class Axis:
     layout: AxisLayout
     group: Group
     index: int
+    unwind_ok: bool = True  # False: RotaryAxis set with PositionUnwind not > 0 (ERR 11)
 
 
 @dataclass(eq=False, slots=True)
@@ -187,6 +189,7 @@ class MotionRuntime:
         tau = 1.0 / (2.0 * math.pi * bw) if bw > 0 else 0.0
         idx = g.core.add_axis(name, kind, tau=tau, position=layout.get(value, "ActualPosition"))
         ax = Axis(name, value, layout, g, idx)
+        self.read_unwind(ax)
         g.axes.append(ax)
         self._axis_of[id(value)] = ax
         self.refresh(ax)
@@ -232,6 +235,21 @@ class MotionRuntime:
         cfg.max_decel = _limit(get(v, "MaximumDecel"))
         cfg.max_accel_jerk = _limit(get(v, "MaximumAccelJerk"))
         cfg.max_decel_jerk = _limit(get(v, "MaximumDecelJerk"))
+
+    def read_unwind(self, ax: Axis) -> bool:
+        """Rotary or linear from the tag (RotaryAxis, PositionUnwind; decision 0115): the
+        core wraps a rotary axis at its unwind. A rotary axis whose unwind is not > 0 is not
+        configured (its motion instructions give error 11) and stays linear; False then."""
+        get, v = ax.layout.get, ax.value
+        rotary = bool(get(v, "RotaryAxis"))
+        unwind = float(get(v, "PositionUnwind")) if rotary else 0.0
+        ax.unwind_ok = not rotary or (math.isfinite(unwind) and unwind > 0.0)
+        u = unwind if ax.unwind_ok else 0.0
+        core = ax.group.core
+        if float(core.unwind[ax.index]) != u:
+            core.set_unwind(ax.index, u)
+            ax.group.stale = True
+        return ax.unwind_ok
 
     def demand(self, members: frozenset[str] | None) -> None:
         """Members (upper case; None: all) that are read from now on, e.g. by a --watch;
@@ -410,7 +428,11 @@ class MotionRuntime:
             "ACTUALACCELERATION": lambda: g.actual_accel,
             "COMMANDACCELERATION": lambda: core.command_acceleration,
             "AVERAGEVELOCITY": lambda: g.average_velocity,
-            "POSITIONERROR": lambda: core.command_position - core.actual_position,
+            # the short way round on a rotary axis (the command may have wrapped, not yet
+            # the actual)
+            "POSITIONERROR": lambda: travel_array(
+                core.command_position, core.actual_position, core.unwind
+            ),
         }
         reals = (
             np.vstack([columns[m]() for m in plan.real_names]).astype(np.float32).T.tolist()
@@ -463,6 +485,10 @@ class MotionRuntime:
             g.history = np.vstack((g.history, np.repeat(g.history[-1:], size - len(g.history), 0)))
             g.ring_at = len(g.history) - 1
         ring = g.history
+        if g.core.unwind.any():  # rotary axes: the ring counts travel through the wrap
+            last = ring[g.ring_at]
+            u = g.core.unwind
+            pos = np.where(u > 0.0, last + travel_array(pos, last, u), pos)
         g.ring_at = (g.ring_at + 1) % len(ring)
         ring[g.ring_at] = pos
         g.filled = min(g.filled + 1, len(ring) - 1)
