@@ -187,21 +187,7 @@ def _binding(g: Group) -> _Binding:
             return h
     b = _Binding(g)
     g.hooks.append(b)
-    g.core.output_cams.unwind = axis_unwind(g)
     return b
-
-
-def axis_unwind(g: Group) -> np.ndarray:
-    """Position units per revolution of each axis of the group (0: linear), from the axis
-    configuration (RotaryAxis and PositionUnwind). A local reading until the axis state
-    itself knows rotary axes."""
-    out = np.zeros(len(g.axes))
-    for ax in g.axes:
-        ix = ax.layout.index
-        if ax.value[ix["ROTARYAXIS"]]:
-            u = float(ax.value[ix["POSITIONUNWIND"]])
-            out[ax.index] = u if math.isfinite(u) and u > 0 else 0.0
-    return out
 
 
 def edge_log(rt: MotionRuntime, container: list, key: int) -> list[Edge]:

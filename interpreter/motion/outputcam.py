@@ -612,7 +612,7 @@ def _simple_step(
     writes: list[tuple[float, int, int, bool]] = []
     order = 0
     mode = t.compensation.mode
-    for when, _, e, now_on in sorted(switches):
+    for when, _, e, now_on in sorted(switches, key=_switch_key):
         b = bit_of[e]
         before = counts[b] > 0
         counts[b] += 1 if now_on else -1
@@ -637,6 +637,13 @@ def _simple_step(
         key = (t.axis, t.target)
         step.changed[key] = step.changed.get(key, 0) | written
     t.output = word
+
+
+def _switch_key(sw: tuple[float, int, int, bool]) -> tuple[float, bool, int]:
+    """Element switches in time order; at one instant the ons before the offs, so that two
+    elements of one bit handing over at the same position (a window split at the end of a
+    continuous range, [350, 360] and [0, 10]) keep the bit on without a zero-width gap."""
+    return sw[0], not sw[3], sw[1]
 
 
 def _max_delay(t: OutputCamTarget) -> float:
@@ -1052,7 +1059,7 @@ def _bits(
     writes: list[tuple[float, int, int, bool]] = []  # (time, order, bit, value)
     running = start_count.copy()
     order = 0
-    for when, _, e, on in sorted(switches):
+    for when, _, e, on in sorted(switches, key=_switch_key):
         b = int(el.bit[e])
         before = running[b] > 0
         running[b] += 1 if on else -1
@@ -1117,7 +1124,7 @@ def _pulse_writes(
     start = ta if active_at_start else None
     origin = float(cam.pulse_origin[b]) if active_at_start else ta
     count = 0
-    for when, _, e, on in sorted(switches):
+    for when, _, e, on in sorted(switches, key=_switch_key):
         if int(el.bit[e]) != b:
             continue
         count += 1 if on else -1

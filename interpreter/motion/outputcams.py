@@ -50,7 +50,7 @@ STATUS_WORDS = (
 class OutputCamProcessSet(MotionlessSet):
     """The output cam execution targets of one motion group, advanced after the axes moved."""
 
-    __slots__ = ("core", "_group", "_start", "_axis_of", "_ended", "last", "unwind")
+    __slots__ = ("core", "_group", "_start", "_axis_of", "_ended", "last")
 
     def __init__(self, group: MotionGroup) -> None:
         self.core = OutputCamSet()
@@ -59,8 +59,6 @@ class OutputCamProcessSet(MotionlessSet):
         self._axis_of: dict[int, int] = {}  # MAOC handle -> axis (events name an axis)
         self._ended: list[int] = []  # handles an MDOC disarmed in a scan: ENDED at the next update
         self.last: OutputCamStep | None = None  # the latest update's switches and edges
-        # position units per revolution of each axis (0: linear); the binding sets it
-        self.unwind = np.zeros(0)
 
     def begin_update(self) -> None:
         if self.core.targets:
@@ -77,8 +75,9 @@ class OutputCamProcessSet(MotionlessSet):
         g = self._group
         end = np.vstack((g.actual_position, g.command_position))
         start = self._start if self._start is not None and self._start.shape == end.shape else end
-        n = end.shape[1]
-        unwind = self.unwind if self.unwind.shape == (n,) else None
+        # rotary axes (decision 0115): positions are wrapped into [0, unwind) before the
+        # sets' end_update; the core takes each displacement the short way round
+        unwind = g.unwind if g.unwind.any() else None
         # the update at g.time ends the interval that began one coarse update earlier
         step = self.core.update(g.time - g.cup, g.cup, start, end, unwind=unwind)
         for e in step.events:

@@ -641,3 +641,44 @@ def test_plot_draws_an_edges_lane(mp, tmp_path) -> None:
     )  # fmt: skip
     assert code == 0, err
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# ----------------------------------------------------------------- rotary axes (0115)
+ROTARY = HEAD.replace(
+    "A : AXIS_VIRTUAL := (", "A : AXIS_VIRTUAL := (RotaryAxis := 1, PositionUnwind := 360.0, "
+)
+
+
+def run_rotary(mp, decls: str, at: dict[int, str], watch: list[str], scans: int) -> dict:
+    body = "".join(f"IF k = {k} THEN {s} END_IF;\n" for k, s in sorted(at.items()))
+    src = ROTARY + decls + "END_VAR\n" + body + "k := k + 1;\n"
+    argv = ["--scans", str(scans), "--coarse-update", "1", "--json"]
+    for w in watch:
+        argv += ["--watch", w]
+    code, out, err = mp.run(src, argv)
+    assert code == 0 and "Traceback" not in err, (code, err, out[:2000])
+    return json.loads(out)["tags"]
+
+
+def test_rotary_window_across_the_unwind(mp) -> None:
+    # A unwinds at 360 (positions in [0, 360)); the unwrapped travel is 100 t - 0.15.
+    # Continuous cam [0, 360]; bit 0 is on over [350, 360] and [0, 10]: on at the unwrapped
+    # 350 (t = 3.5015) and off at 370 (3.7015), again at 710 / 730; the two elements hand
+    # over at the wrap without switching the bit (decision 0114)
+    decls = cam_decl("cam", el(left=350.0, right=360.0), el(left=0.0, right=10.0))
+    tags = run_rotary(mp, decls, {0: JOG + maoc(end=360.0)},
+                      ["outw.0@edges", "A.ActualPosition"], 7400)  # fmt: skip
+    assert_edges(tags["outw.0@edges"], [(tf(350), 1), (tf(370), 0), (tf(710), 1), (tf(730), 0)])
+    assert 0.0 <= tags["A.ActualPosition"] < 360.0
+
+
+def test_rotary_forward_only_arms_once_per_revolution_position(mp) -> None:
+    # Forward only at AxisArm 90 on the rotary axis, armed in scan 1000 (x = 99.85, just past
+    # 90): it locks at the next pass of 90, the unwrapped 450 (t = 4.5015), with CamArm 0:
+    # window [10, 20] -> unwrapped 460 .. 470; Once on [0, 100]
+    tags = run_rotary(mp, cam_decl("cam", el()),
+                      {0: JOG, 1000: maoc(end=100.0, mode="once", sched="forwardonly",
+                                          axis_arm=90.0)},
+                      ["outw.0@edges", "arm.PC"], 5600)  # fmt: skip
+    assert_edges(tags["outw.0@edges"], [(tf(460), 1), (tf(470), 0)])
+    assert tags["arm.PC"] is True  # cam 100 passed at the unwrapped 550 (t = 5.5015)
