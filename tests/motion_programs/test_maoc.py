@@ -682,3 +682,36 @@ def test_rotary_forward_only_arms_once_per_revolution_position(mp) -> None:
                       ["outw.0@edges", "arm.PC"], 5600)  # fmt: skip
     assert_edges(tags["outw.0@edges"], [(tf(460), 1), (tf(470), 0)])
     assert tags["arm.PC"] is True  # cam 100 passed at the unwrapped 550 (t = 5.5015)
+
+
+# ----------------------------------------------------------------- checker (catalog rules)
+def test_checker_knows_the_operand_rules_from_the_catalog(mp) -> None:
+    # ExecutionMode/ExecutionSchedule/Reference and DisarmType are immediate enumerations
+    # (E107 for a tag, E108 for an unknown text); Axis must be an axis (E113); OutputCam and
+    # OutputCompensation take their own array types (E105); Output must be a tag (E106)
+    src = head("") + cam_decl("cam", el()) + "  r : REAL;\n  m : DINT;\nEND_VAR\n" + "\n".join([
+        "IF k = 0 THEN",
+        "MAOC(A, 0, arm, outw, inw, cam, 0.0, 100.0, comp, persistent, forwardonly, 0.0, 0.0, command);",
+        "MAOC(A, 0, arm2, outw, inw, cam, 0.0, 100.0, comp, once, Bi-directional, 0.0, 0.0, actual);",
+        "MAOC(A, 0, arm, outw, inw, cam, 0.0, 100.0, comp, m, pending, 0.0, 0.0, actual);",
+        "MAOC(A, 0, arm, outw, inw, cam, 0.0, 100.0, comp, sometimes, pending, 0.0, 0.0, actual);",
+        "MAOC(r, 0, arm, outw, inw, cam, 0.0, 100.0, comp, once, pending, 0.0, 0.0, actual);",
+        "MAOC(A, 0, arm, outw, inw, comp, 0.0, 100.0, cam, once, pending, 0.0, 0.0, actual);",
+        "MAOC(A, 0, arm, 5, inw, cam, 0.0, 100.0, comp, once, pending, 0.0, 0.0, actual);",
+        "MDOC(A, 0, dis, specific); MDOC(A, 0, stp, all); MDOC(A, 0, dis, m);",
+        "END_IF;",
+    ]) + "\n"  # fmt: skip
+    prog = mp.tmp / "chk.st"
+    prog.write_text(src)
+    from interpreter.cli import main
+
+    mp.capsys.readouterr()
+    code = main(["check", str(prog), "--format", "json"])
+    diags = json.loads(mp.capsys.readouterr().out)
+    errors = sorted((d["line"], d["code"]) for d in diags if d["severity"] == "error")
+    first = src.count("\n", 0, src.index("IF k = 0")) + 1  # line of IF k = 0
+    assert code == 1
+    assert errors == [
+        (first + 3, "E107"), (first + 4, "E108"), (first + 5, "E113"),
+        (first + 6, "E105"), (first + 6, "E105"), (first + 7, "E106"), (first + 8, "E107"),
+    ]  # fmt: skip
