@@ -54,6 +54,7 @@ class GearSet:
         self.a = np.zeros(0)
         self.locked = np.zeros(0, dtype=bool)
         self.last_dir: dict[int, int] = {}  # slave -> +1 same, -1 opposite (absent: none yet)
+        self._idle_status: dict[str, np.ndarray] | None = None  # read-only, shared
 
     def __len__(self) -> int:
         return len(self.handle)
@@ -154,6 +155,12 @@ class GearSet:
 
     def status(self, n: int) -> dict[str, np.ndarray]:
         """GearingStatus (geared) and GearingLockStatus (clutch done)."""
+        if not len(self.slave):  # no gear: the same all-clear arrays every update
+            idle = self._idle_status
+            if idle is None or len(idle["GearingStatus"]) != n:
+                off = np.zeros(n, dtype=bool)
+                idle = self._idle_status = {"GearingStatus": off, "GearingLockStatus": off}
+            return idle
         gear = np.zeros(n, dtype=bool)
         gear[self.slave] = True
         lock = np.zeros(n, dtype=bool)

@@ -141,7 +141,9 @@ class MotionGroup:
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
         self._levels_dirty = False
-        self.status: dict[str, np.ndarray] = {}
+        # AXIS status members per axis, computed when read after an update (`status`)
+        self._status: dict[str, np.ndarray] = {}
+        self._status_stale = False
         # moves, jogs and stops; ending one goes through moves.end_gen (MGS bookkeeping)
         self.moves = ProfileSet(lambda g, kind, ev: end_gen(self, g, kind, ev))
         self._cams = TimeCamSet()
@@ -163,6 +165,7 @@ class MotionGroup:
             self.output_cams,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
+        self.shifted = False  # some shift is not 0 (spares resetting and testing the array)
 
     @property
     def _gens(self) -> list[ProfileGen]:
@@ -224,9 +227,10 @@ class MotionGroup:
         self._alpha = lag_alpha(self.tau, self.cup)
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
+        st = self.status
         for name_ in STATUS_BITS:
-            self.status[name_] = np.zeros(len(self.axes), dtype=bool)
-        self.status["ServoActionStatus"] = self.servo_on.copy()
+            st[name_] = np.zeros(len(self.axes), dtype=bool)
+        st["ServoActionStatus"] = self.servo_on.copy()
         self.set_unwind(len(self.axes) - 1, unwind)
         return len(self.axes) - 1
 
@@ -251,6 +255,17 @@ class MotionGroup:
         u = float(self.unwind[axis])
         self.command_position[axis] = wrap(position, u)
         self.actual_position[axis] = wrap(position, u)
+
+    @property
+    def status(self) -> dict[str, np.ndarray]:
+        """AXIS status members (bool per axis) as of the latest update. The bits the group
+        derives from velocity and acceleration are computed when first read after it: the
+        runtime reads them right after the updates due before a scan, and only when a
+        status member is demanded (decision 0104), so most updates never build them."""
+        if self._status_stale:
+            self._status_stale = False
+            self._motion_bits()
+        return self._status
 
     def motion_status_word(self) -> np.ndarray:
         """MotionStatus DINT bits per axis from the status arrays."""
@@ -427,6 +442,7 @@ class MotionGroup:
         self.command_position[axis] = wrap(float(self.command_position[axis]) + delta, u)
         self.actual_position[axis] = wrap(float(self.actual_position[axis]) + delta, u)
         self.shift[axis] += delta
+        self.shifted = True
         for ps in self._sets:
             ps.shift_master(axis, delta)
 
@@ -492,7 +508,9 @@ class MotionGroup:
         """Advance every axis one coarse update; returns the events of this update."""
         ev: list[tuple[int, EventKind, int]] = []
         self.time = self.updates * self.cup  # updates happen at 0, cup, 2 cup, ...
-        self.shift[:] = 0.0
+        if self.shifted:
+            self.shift[:] = 0.0
+            self.shifted = False
         pre, self._pre = self._pre, []
         for f in pre:
             f(ev)
@@ -514,10 +532,17 @@ class MotionGroup:
             parts = [c for c in parts if len(c.axis)]
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
             if parts:
-                axes = np.concatenate([c.axis for c in parts])
-                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
-                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
-                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
+                if len(parts) == 1:  # one kind of motion running: nothing to join
+                    c = parts[0]
+                    axes, dpos, vel, acc = c.axis, c.dpos, c.vel, c.acc
+                else:
+                    axes = np.concatenate([c.axis for c in parts])
+                    dpos = np.concatenate([c.dpos for c in parts])
+                    vel = np.concatenate([c.vel for c in parts])
+                    acc = np.concatenate([c.acc for c in parts])
+                dpos = np.bincount(axes, dpos, n)
+                vel = np.bincount(axes, vel, n)
+                acc = np.bincount(axes, acc, n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]
@@ -557,14 +582,22 @@ class MotionGroup:
         self.actual_position[r] = cmd - (d - u * np.floor(d / u + 0.5))
 
     def _update_status(self) -> None:
+        """At the end of an update: the sets' status members (asking them is part of the
+        update: a time cam set settles its axis claims then) and the servo state; the
+        velocity bits follow when read (`status`)."""
         n = len(self.axes)
-        st = self.status
+        st = self._status
+        for ps in self._sets:
+            st.update(ps.status(n))
+        st["ServoActionStatus"] = self.servo_on.copy()
+        st["ShutdownStatus"] = self.shutdown.copy()
+        self._status_stale = True
+
+    def _motion_bits(self) -> None:
+        """AccelStatus, DecelStatus and MaximumSpeedExceeded of the latest update."""
+        st = self._status
         v, a = self.command_velocity, self.command_acceleration
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        for ps in self._sets:
-            st.update(ps.status(n))
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
-        st["ServoActionStatus"] = self.servo_on.copy()
-        st["ShutdownStatus"] = self.shutdown.copy()

@@ -99,12 +99,15 @@ class Group:
     core: MotionGroup
     axes: list[Axis] = field(default_factory=list)
     tracked: dict[int, Tracked] = field(default_factory=dict)
+    links: list[int] = field(default_factory=list)  # handles of the tracked master links
     after: list[Callable[[], None]] = field(default_factory=list)
     prev_vel: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: np.ndarray = field(default_factory=lambda: np.zeros((1, 0)))  # ring of positions
     ring_at: int = 0  # row of the latest position in history
     filled: int = 0  # updates recorded (capped at the ring length - 1)
     actual_accel: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    vel_before: np.ndarray = field(default_factory=lambda: np.zeros(0))  # one update earlier
+    accel_known: bool = False  # two updates done: ActualAcceleration can be formed
     average_velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     stale: bool = True  # updated since its axis attributes were last written to the tags
     hooks: list[UpdateHook] = field(default_factory=list)
@@ -275,6 +278,8 @@ class MotionRuntime:
 
     def track(self, g: Group, handle: int, tracked: Tracked) -> None:
         g.tracked[handle] = tracked
+        if tracked.link:
+            g.links.append(handle)
         self.own(tracked.control, g, handle)
 
     def token(self, g: Group) -> int:
@@ -308,11 +313,17 @@ class MotionRuntime:
         groups = self.groups
         if not groups:
             return
-        while True:
-            g = min(groups, key=lambda x: x.next_time_ms)
-            if g.next_time_ms > now_ms + 1e-6:
-                break
-            self._update(g)
+        due = now_ms + 1e-6
+        if len(groups) == 1:  # the usual case: no choosing between groups
+            g = groups[0]
+            while g.core.updates * g.cup_ms <= due:
+                self._update(g)
+        else:
+            while True:
+                g = min(groups, key=lambda x: x.next_time_ms)
+                if g.next_time_ms > due:
+                    break
+                self._update(g)
         for g in groups:  # the scan may read them: once per scan, not once per update
             if g.stale:
                 self._write_axes(g)
@@ -321,7 +332,7 @@ class MotionRuntime:
         for h in g.hooks:
             h.before_update()
         events = g.core.update()
-        if g.core.shift.any():  # MRP / MAH: the AverageVelocity window moves with the axis
+        if g.core.shifted:  # MRP / MAH: the AverageVelocity window moves with the axis
             g.history += g.core.shift
         for ev in events:
             self._event(g, ev)
@@ -350,6 +361,8 @@ class MotionRuntime:
         elif k is EventKind.COMPLETE or k is EventKind.ENDED:
             self.count(tr, -1)
             del g.tracked[ev.handle]
+            if tr.link:
+                g.links.remove(ev.handle)
             if tr.on_end is not None:
                 tr.on_end(g, k is EventKind.COMPLETE)
             if own:
@@ -377,9 +390,12 @@ class MotionRuntime:
 
     def _active_bits(self, g: Group) -> None:
         """MDAC .AC follows whether a master-driven motion of the link is running."""
+        if not g.links:
+            return
         in_use = None
-        for h, tr in g.tracked.items():
-            if tr.link and tr.control[AC] and self.owns(tr.control, g, h):
+        for h in g.links:
+            tr = g.tracked[h]
+            if tr.control[AC] and self.owns(tr.control, g, h):
                 if in_use is None:
                     in_use = g.core.links_in_use()
                 if h not in in_use:
@@ -396,8 +412,10 @@ class MotionRuntime:
         difference quotient of actual velocity) and, when read, AverageVelocity's window."""
         core = g.core
         av = core.actual_velocity
-        g.actual_accel = (av - g.prev_vel) / core.cup if core.updates > 1 else np.zeros_like(av)
-        g.prev_vel = av.copy()
+        # ActualAcceleration = (this update's velocity - the previous one) / cup, formed
+        # when written (_write_axes): most updates are never read
+        g.vel_before, g.prev_vel = g.prev_vel, av.copy()
+        g.accel_known = core.updates > 1
         if self._demand is None or "AVERAGEVELOCITY" in self._demand:
             g.average_velocity = self._average_velocity(g)
         g.stale = True
@@ -416,7 +434,9 @@ class MotionRuntime:
             return
         core = g.core
         n_axes = len(g.axes)
-        if len(g.actual_accel) != n_axes:
+        if g.accel_known and len(g.vel_before) == n_axes:
+            g.actual_accel = (g.prev_vel - g.vel_before) / core.cup
+        if len(g.actual_accel) != n_axes or not g.accel_known:
             g.actual_accel = np.zeros(n_axes)
         if len(g.average_velocity) != n_axes:
             g.average_velocity = np.zeros(n_axes)
