@@ -715,3 +715,26 @@ def test_checker_knows_the_operand_rules_from_the_catalog(mp) -> None:
         (first + 3, "E107"), (first + 4, "E108"), (first + 5, "E113"),
         (first + 6, "E105"), (first + 6, "E105"), (first + 7, "E106"), (first + 8, "E107"),
     ]  # fmt: skip
+
+
+def test_reference_command_and_actual_on_a_drive_axis(mp) -> None:
+    # a drive axis (servo model lag) jogged like A: its command position is 100 t - 0.15
+    # (MSO and the jog in scan 0), its actual position lags behind. Reference Command
+    # switches at the closed form of the command; Reference Actual later, by the lag
+    decls = (
+        "  D : AXIS_CIP_DRIVE := (MaximumSpeed := 1000.0, MaximumAccel := 100000.0, "
+        "MaximumDecel := 100000.0, PositionLoopBandwidth := 20.0);\n  so : MOTION_INSTRUCTION;\n"
+        "  out2 : DINT;\n" + cam_decl("cam", el())
+    )
+    jog = JOG.replace("MAJ(A,", "MAJ(D,")
+    at = {0: "MSO(D, so); " + jog
+          + maoc(ref="command").replace("MAOC(A,", "MAOC(D,")
+          + maoc(ctl="arm2", target=1, out="out2").replace("MAOC(A,", "MAOC(D,")}  # fmt: skip
+    tags = run(mp, decls, at, ["outw.0@edges", "out2.0@edges"], 300)
+    assert_edges(tags["outw.0@edges"], [(tf(10), 1), (tf(20), 0)])
+    # first-order lag, tau = 1 / (2 pi 20) = 8 ms: at steady speed actual trails command by
+    # v tau = 0.8 units, i.e. the actual crosses each level about 8 ms later
+    actual = tags["out2.0@edges"]
+    assert [v for _, v in actual] == [1, 0]
+    for (t, _), te in zip(actual, (tf(10), tf(20)), strict=True):
+        assert 0.007 < t - te < 0.009, actual
