@@ -738,3 +738,17 @@ def test_reference_command_and_actual_on_a_drive_axis(mp) -> None:
     assert [v for _, v in actual] == [1, 0]
     for (t, _), te in zip(actual, (tf(10), tf(20)), strict=True):
         assert 0.007 < t - te < 0.009, actual
+
+
+def test_inverted_output_enable_type(mp) -> None:
+    # Inverted Output bit 5: enabled while outw.5 = 0 -- on from the start (nothing switches
+    # at arming), off at 0.050 (the element was never on: no edge), on again at 0.090: set
+    tags = run(
+        mp,
+        cam_decl("cam", el(bit=1, latch=2, unlatch=3, EnableType=3, EnableBit=5)),
+        {0: JOG + maoc(), 50: "outw.5 := 1;", 90: "outw.5 := 0;"},
+        ["outw.1@edges", "outw"],
+        200,
+    )
+    assert_edges(tags["outw.1@edges"], [(0.090, 1)])
+    assert tags["outw"] == 2
