@@ -278,7 +278,7 @@ class MotionRuntime:
 
     def track(self, g: Group, handle: int, tracked: Tracked) -> None:
         g.tracked[handle] = tracked
-        if tracked.link:
+        if tracked.link and handle not in g.links:
             g.links.append(handle)
         self.own(tracked.control, g, handle)
 
@@ -361,7 +361,7 @@ class MotionRuntime:
         elif k is EventKind.COMPLETE or k is EventKind.ENDED:
             self.count(tr, -1)
             del g.tracked[ev.handle]
-            if tr.link:
+            if ev.handle in g.links:
                 g.links.remove(ev.handle)
             if tr.on_end is not None:
                 tr.on_end(g, k is EventKind.COMPLETE)
@@ -395,7 +395,7 @@ class MotionRuntime:
         in_use = None
         for h in g.links:
             tr = g.tracked[h]
-            if tr.control[AC] and self.owns(tr.control, g, h):
+            if tr.link and tr.control[AC] and self.owns(tr.control, g, h):
                 if in_use is None:
                     in_use = g.core.links_in_use()
                 if h not in in_use:
@@ -441,8 +441,8 @@ class MotionRuntime:
         if len(g.average_velocity) != n_axes:
             g.average_velocity = np.zeros(n_axes)
         columns = {
-            "ACTUALPOSITION": lambda: core.actual_position,
-            "COMMANDPOSITION": lambda: core.command_position,
+            "ACTUALPOSITION": lambda: _on_circle(core.actual_position, core.unwind),
+            "COMMANDPOSITION": lambda: _on_circle(core.command_position, core.unwind),
             "ACTUALVELOCITY": lambda: core.actual_velocity,
             "COMMANDVELOCITY": lambda: core.command_velocity,
             "ACTUALACCELERATION": lambda: g.actual_accel,
@@ -602,6 +602,16 @@ def _collect_words(node: object, out: set[str]) -> None:
                 value = getattr(x, f.name)
                 if isinstance(value, str):
                     out.add(value.upper())
+
+
+def _on_circle(pos: np.ndarray, unwind: np.ndarray) -> np.ndarray:
+    """Positions as the REAL tag shows them: a rotary position just below the unwind
+    that float32 rounds up to the unwind itself is shown as 0, so the tag stays in
+    [0, unwind) too (decision 0115)."""
+    if not unwind.any():
+        return pos
+    up = (unwind > 0.0) & (pos.astype(np.float32) >= unwind.astype(np.float32))
+    return np.where(up, 0.0, pos) if up.any() else pos
 
 
 def _limit(x: float) -> float:

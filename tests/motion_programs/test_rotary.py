@@ -326,3 +326,45 @@ def test_master_driven_time_cam_follows_a_rotary_master(mp) -> None:
     assert tr.at(0.0, "c3.ER") == 0
     base = tr.at(1.0, "L.CommandPosition")
     tr.check("L.CommandPosition", lambda t: base + 200.0 * (update_time(t) - 1.0), 5e-3, t0=1.0)
+
+
+def test_tag_shows_a_position_just_below_the_unwind_as_zero(mp) -> None:
+    # an incremental move of -1e-6 from 0 ends at 360 - 1e-6 = 359.999999, which float32
+    # (spacing 3.05e-5 near 360) rounds to 360.0, the unwind itself: the REAL tag shows 0.0
+    src = prog("", "IF k = 0 THEN " + mam("R", "c1", "incremental", -0.000001) + " END_IF;")
+    tr = mp.trace(src, ["R.ActualPosition", "R.CommandPosition", "c1.PC"], scans=100)
+    assert tr.rows[-1][tr.names.index("c1.PC")] == 1
+    for name in ("R.ActualPosition", "R.CommandPosition"):
+        assert all(0.0 <= v < U for v in tr.col(name))
+        assert tr.rows[-1][tr.names.index(name)] == 0.0
+
+
+def test_reverse_watch_position_crossed_by_the_wrap(mp) -> None:
+    # reverse jog at 50 u/s from 0 (-0.1 per update from the update after t0); MAW reverse
+    # to 359.95 armed in the same scan (actual 0): the first moving update goes 0 -> 359.9,
+    # i.e. -0.1, passing 359.95 (= -0.05): it fires at t0 + 2 ms = 0.004 s
+    src = prog(
+        "",
+        "IF k = 0 THEN "
+        + JOG.format(axis="R", ctl="c1", dir=1, v=50.0)
+        + " MAW(R, c2, reverse, 359.95); END_IF;",
+    )
+    tr = mp.trace(src, ["c2.PC", "c2.ER", "R.ActualPosition"], scans=50)
+    assert tr.at(0.0, "c2.ER") == 0
+    assert tr.first("c2.PC", lambda v: v == 1) == pytest.approx(0.004, abs=1e-9)
+
+
+def test_redefine_and_home_onto_the_circle(mp) -> None:
+    # MRP absolute 725 at scan 0 (the update t0): 725 mod 360 = 5; MAH passive with
+    # HomePosition 400 at scan 100 (the update 0.1): 400 mod 360 = 40. Nothing moves.
+    src = prog(
+        f"  H : AXIS_VIRTUAL := (RotaryAxis := 1, PositionUnwind := 360.0, HomeMode := 0, HomePosition := 400.0, {DYN});\n",
+        "IF k = 0 THEN MRP(R, c1, absolute, actual, 725.0); END_IF;\n"
+        "IF k = 100 THEN MAH(H, c2); END_IF;",
+    )
+    watch = ["R.ActualPosition", "R.CommandPosition", "H.ActualPosition", "c1.DN", "c2.PC"]
+    tr = mp.trace(src, watch, scans=200)
+    assert tr.at(0.002, "c1.DN") == 1 and tr.at(0.102, "c2.PC") == 1
+    assert tr.at(0.002, "R.ActualPosition") == pytest.approx(5.0, abs=F32)
+    assert tr.at(0.002, "R.CommandPosition") == pytest.approx(5.0, abs=F32)
+    assert tr.at(0.102, "H.ActualPosition") == pytest.approx(40.0, abs=F32)
