@@ -50,12 +50,13 @@ STATUS_WORDS = (
 class OutputCamProcessSet(MotionlessSet):
     """The output cam execution targets of one motion group, advanced after the axes moved."""
 
-    __slots__ = ("core", "_group", "_start", "_axis_of", "_ended", "last")
+    __slots__ = ("core", "_group", "_start", "_end", "_axis_of", "_ended", "last")
 
     def __init__(self, group: MotionGroup) -> None:
         self.core = OutputCamSet()
         self._group = group
         self._start: np.ndarray | None = None  # (2, axes): actual, command at the interval start
+        self._end = np.zeros((2, 0))  # the same at its end (buffers reused every update)
         self._axis_of: dict[int, int] = {}  # MAOC handle -> axis (events name an axis)
         self._ended: list[int] = []  # handles an MDOC disarmed in a scan: ENDED at the next update
         self.last: OutputCamStep | None = None  # the latest update's switches and edges
@@ -63,7 +64,11 @@ class OutputCamProcessSet(MotionlessSet):
     def begin_update(self) -> None:
         if self.core.targets:
             g = self._group
-            self._start = np.vstack((g.actual_position, g.command_position))
+            n = len(g.actual_position)
+            if self._start is None or self._start.shape != (2, n):
+                self._start = np.empty((2, n))
+            self._start[0] = g.actual_position
+            self._start[1] = g.command_position
 
     def end_update(self, actual: np.ndarray, events: Events) -> None:
         for h in self._ended:
@@ -73,7 +78,12 @@ class OutputCamProcessSet(MotionlessSet):
             self.last = None
             return
         g = self._group
-        end = np.vstack((g.actual_position, g.command_position))
+        n = len(g.actual_position)
+        if self._end.shape != (2, n):
+            self._end = np.empty((2, n))
+        end = self._end
+        end[0] = g.actual_position
+        end[1] = g.command_position
         start = self._start if self._start is not None and self._start.shape == end.shape else end
         # rotary axes (decision 0115): positions are wrapped into [0, unwind) before the
         # sets' end_update; the core takes each displacement the short way round
