@@ -52,6 +52,11 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
+from interpreter.motion.outputcams import (
+    OutputCamProcessSet,
+    arm_output_cam,
+    disarm_output_cam,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
@@ -148,6 +153,7 @@ class MotionGroup:
         self._links = LinkTable()  # MDAC master assignments
         self._gears = GearSet()
         self._homing = HomingSet()
+        self.output_cams = OutputCamProcessSet(self)  # MAOC/MDOC: after the axes moved
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
@@ -156,6 +162,7 @@ class MotionGroup:
             self.watch,
             self._homing,
             self._links,
+            self.output_cams,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
         self.shifted = False  # some shift is not 0 (spares resetting and testing the array)
@@ -178,6 +185,8 @@ class MotionGroup:
     arm_registration = arm_registration
     disarm_registration = disarm_registration
     change_dynamics = change_dynamics
+    arm_output_cam = arm_output_cam
+    disarm_output_cam = disarm_output_cam
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""

@@ -13,6 +13,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 from functools import cache
+from typing import Protocol
 
 import numpy as np
 
@@ -79,6 +80,15 @@ class Tracked:
     on_end: Callable[[Group, bool], None] | None = None  # completed?
 
 
+class UpdateHook(Protocol):
+    """Tags a kind of motion reads before every planner update and writes after it (an
+    output cam's Input/Output words and axis words), registered by its binding once."""
+
+    def before_update(self) -> None: ...
+
+    def after_update(self) -> None: ...
+
+
 @dataclass(eq=False, slots=True)
 class Group:
     """A motion group: the core MotionGroup plus the tags and processes attached to it."""
@@ -100,6 +110,7 @@ class Group:
     accel_known: bool = False  # two updates done: ActualAcceleration can be formed
     average_velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     stale: bool = True  # updated since its axis attributes were last written to the tags
+    hooks: list[UpdateHook] = field(default_factory=list)
 
     @property
     def next_time_ms(self) -> float:
@@ -318,12 +329,16 @@ class MotionRuntime:
                 self._write_axes(g)
 
     def _update(self, g: Group) -> None:
+        for h in g.hooks:
+            h.before_update()
         events = g.core.update()
         if g.core.shifted:  # MRP / MAH: the AverageVelocity window moves with the axis
             g.history += g.core.shift
         for ev in events:
             self._event(g, ev)
         self._active_bits(g)
+        for h in g.hooks:
+            h.after_update()
         self._record(g)
         after, g.after = g.after, []
         for fn in after:
