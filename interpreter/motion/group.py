@@ -51,6 +51,13 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
+from interpreter.motion.paths import (
+    PathSet,
+    add_coordinate_system,
+    path_start_point,
+    start_path,
+    stop_path,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -138,6 +145,7 @@ class MotionGroup:
         self._links = LinkTable()  # MDAC master assignments
         self._gears = GearSet()
         self._homing = HomingSet()
+        self.paths = PathSet()  # coordinate systems and their path moves (MCLM, MCCM, MCS)
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
@@ -146,6 +154,7 @@ class MotionGroup:
             self.watch,
             self._homing,
             self._links,
+            self.paths,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
 
@@ -166,6 +175,10 @@ class MotionGroup:
     arm_registration = arm_registration
     disarm_registration = disarm_registration
     change_dynamics = change_dynamics
+    add_coordinate_system = add_coordinate_system
+    path_start_point = path_start_point
+    start_path = start_path
+    stop_path = stop_path
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""
@@ -510,8 +523,12 @@ class MotionGroup:
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        for ps in self._sets:
-            st.update(ps.status(n))
+        owned: dict[str, np.ndarray] = {}
+        for ps in self._sets:  # a member two kinds set (CoordinatedMotionStatus) is their OR
+            for name, arr in ps.status(n).items():
+                prev = owned.get(name)
+                owned[name] = arr if prev is None else prev | arr
+        st.update(owned)
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()

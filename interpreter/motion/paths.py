@@ -1,0 +1,601 @@
+"""Coordinated paths (MCLM, MCCM, MCS): the axes of a coordinate system along a Segment.
+
+A path move runs the closed-form move profile of profiles.py (the one MAM uses) on its
+path parameter s, the arc length along its Segment (path_geometry.py); the axes follow
+p(s). Every path row of the group (one per running move, across all coordinate systems)
+is advanced in one numpy step: the profiles' segment tables are padded into one matrix
+and the geometry is one SegmentTable evaluation.
+
+A coordinate system keeps one move queued behind the active one (SPEC 9.28). Blending
+(termination types 2, 3, 6 and, here, 4 and 5) starts the queued move while the active one
+is still running; both rows then contribute and their motions add up, so the vector speed
+does not drop to zero between tangent moves. Decisions: docs/decisions/0122..0125.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from interpreter.motion.enums import EventKind, MergeMode, StopType
+from interpreter.motion.errors import MotionError, StartResult
+from interpreter.motion.path_geometry import GeometryError, Segment, SegmentTable
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+)
+from interpreter.motion.profiles import (
+    Limits,
+    MoveProfile,
+    change_distance,
+    plan_move,
+    plan_stop,
+)
+
+if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the class
+    from interpreter.motion.group import MotionGroup
+
+Build = Callable[[np.ndarray], Segment | GeometryError]
+
+_EPS = 1e-9
+
+
+class Termination:
+    """TerminationType operand values (catalog enum TerminationType)."""
+
+    ACTUAL_TOLERANCE = 0
+    NO_SETTLE = 1
+    COMMAND_TOLERANCE = 2
+    NO_DECEL = 3
+    FOLLOW_CONTOUR_CONSTRAINED = 4
+    FOLLOW_CONTOUR_UNCONSTRAINED = 5
+    COMMAND_TOLERANCE_PROGRAMMED = 6
+
+
+# termination types whose move lets the queued one start before it has ended
+_BLENDING = frozenset({2, 3, 4, 5, 6})
+# ... and of those, the ones that blend from the deceleration point
+_AT_DECEL_POINT = frozenset({3, 4, 5})
+
+
+@dataclass(slots=True)
+class PathMove:
+    """One MCLM/MCCM: a segment, its dynamics and how it ends; a row while it moves."""
+
+    handle: int
+    system: int
+    segment: Segment
+    limits: Limits
+    termination: int
+    tolerance: float  # blend distance of termination 2/6 (system's or the operand)
+    profile: MoveProfile | None = None
+    owner: int = 0  # handle its events go to (a stopping move reports to the MCS)
+    n: int = 0  # updates since its profile started
+    s0: float = 0.0  # path parameter where the profile starts (a stop replans from s)
+    s: float = 0.0
+    v: float = 0.0
+    a: float = 0.0
+    last: np.ndarray = field(default_factory=lambda: np.zeros(3))  # point reached (3D)
+    phase: int = -1  # 0 accel, 1 decel, 2 constant
+    blend_s: float = math.inf  # s from which the queued move may start
+    settling: bool = False  # termination 0: profile done, waiting for the actual position
+
+
+@dataclass(slots=True)
+class CoordSystem:
+    """A coordinate system of the group: its axes, moving rows and the one-deep queue."""
+
+    axes: tuple[int, ...]
+    command_tolerance: float = 0.1
+    actual_tolerance: float = 0.01
+    max_decel: float = math.inf
+    max_decel_jerk: float = math.inf
+    rows: list[PathMove] = field(default_factory=list)  # moving (the leading one last)
+    lead: PathMove | None = None  # the active move (the queued one starts after it)
+    queue: list[PathMove] = field(default_factory=list)  # accepted, not started
+    stop: int = 0  # MCS handle while stopping
+    cmd_tol: bool = False  # CommandPosToleranceStatus (kept until a new move starts)
+    act_tol: bool = False  # ActualPosToleranceStatus
+
+    @property
+    def ndim(self) -> int:
+        return len(self.axes)
+
+    def end_point(self) -> np.ndarray | None:
+        """Where the last accepted move ends (the next one starts there), if any."""
+        if self.queue:
+            return self.queue[-1].segment.end
+        if self.lead is not None and self.stop == 0:
+            return self.lead.segment.end
+        return None
+
+
+_PHASES = (EventKind.ACCEL, EventKind.DECEL, EventKind.CONSTANT)
+
+
+class PathSet:
+    """The coordinate systems of a group and their moving path rows, stepped together."""
+
+    def __init__(self) -> None:
+        self.systems: list[CoordSystem] = []
+        self._rows: list[PathMove] = []
+        self._dirty = True
+        self._fresh = True  # the row objects hold the latest state
+        # rows whose profile ended (True) or that reached their blend point, latest step
+        self._done: list[tuple[PathMove, bool]] = []
+        self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
+
+    # -- rows ------------------------------------------------------------------
+    def _sync_out(self) -> None:
+        if self._fresh or self._dirty:
+            return
+        for k, r in enumerate(self._rows):
+            r.n = int(self._n[k])
+            r.s = float(self._s[k])
+            r.v = float(self._v[k])
+            r.a = float(self._a[k])
+            r.last = self._last[k].copy()
+            r.phase = int(self._phase[k])
+        self._fresh = True
+
+    def changed(self) -> None:
+        """Rows or queues changed: state back into the objects, arrays rebuilt at the next step."""
+        self._sync_out()
+        self._dirty = True
+        self._status_cache = None
+
+    def _rebuild(self) -> None:
+        rows = self._rows
+        m = len(rows)
+        self.table = SegmentTable.of([r.segment for r in rows])
+        width = max((len(r.profile.t0) for r in rows if r.profile is not None), default=1)
+        self._t0 = np.full((m, width), np.inf)
+        coef = np.zeros((m * width, 5))
+        dur = np.zeros(m)
+        for i, r in enumerate(rows):
+            pr = r.profile
+            assert pr is not None
+            k = len(pr.t0)
+            self._t0[i, :k] = pr.t0
+            coef[i * width : i * width + k] = np.column_stack((pr.t0, pr.p0, pr.v0, pr.a0, pr.j))
+            dur[i] = pr.duration
+        self._coef = coef
+        self._base = np.arange(m, dtype=np.intp) * width
+        self._duration = dur
+        self._n = np.array([r.n for r in rows], dtype=np.int64)
+        self._s0 = np.array([r.s0 for r in rows], dtype=float)
+        self._s = np.array([r.s for r in rows], dtype=float)
+        self._v = np.array([r.v for r in rows], dtype=float)
+        self._a = np.array([r.a for r in rows], dtype=float)
+        self._last = np.array([r.last for r in rows], dtype=float).reshape(m, 3)
+        self._phase = np.array([r.phase for r in rows], dtype=np.int64)
+        queued = {id(cs.lead) for cs in self.systems if cs.queue and cs.lead is not None}
+        self._blend = np.array(
+            [r.blend_s if id(r) in queued else math.inf for r in rows], dtype=float
+        )
+        # one contribution entry per (row, axis of its system)
+        ax: list[int] = []
+        ri: list[int] = []
+        col: list[int] = []
+        for i, r in enumerate(rows):
+            axes = self.systems[r.system].axes
+            ax.extend(axes)
+            ri.extend([i] * len(axes))
+            col.extend(range(len(axes)))
+        self._ax = np.array(ax, dtype=np.intp)
+        self._ri = np.array(ri, dtype=np.intp)
+        self._col = np.array(col, dtype=np.intp)
+        self._all = np.arange(m, dtype=np.intp)
+        self._dirty = False
+
+    # -- ProcessSet ------------------------------------------------------------
+    def begin_update(self) -> None:
+        pass
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        """Advance every path row one update (paths are time driven: level 0 only)."""
+        self._done = []
+        if not self._rows or (level_sel is not None and level_sel[1] != 0):
+            return EMPTY
+        if self._dirty:
+            self._rebuild()
+        self._fresh = False
+        self._n += 1
+        t = self._n * cup
+        seg = (self._t0 <= t[:, None]).sum(axis=1) - 1
+        c = self._coef[self._base + seg]
+        d = t - c[:, 0]
+        v0, a0, jj = c[:, 2], c[:, 3], c[:, 4]
+        s = self._s0 + c[:, 1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
+        v = v0 + d * (a0 + d * jj / 2.0)
+        a = a0 + d * jj
+        finished = t >= self._duration
+        tb = self.table
+        rows = self._all
+        pts = tb.points(rows, s)
+        tan = tb.tangents(rows, s)
+        # curvature term of the acceleration: d2p/ds2 = -k^2 (cos(ks) A + sin(ks) B) on arcs
+        k = tb.rate
+        ks = k * np.clip(s, 0.0, tb.length)
+        k2 = k * k
+        curv = -(k2 * np.cos(ks))[:, None] * tb.a - (k2 * np.sin(ks))[:, None] * tb.b
+        vel = v[:, None] * tan
+        acc = a[:, None] * tan + (v * v)[:, None] * curv
+        dpos = pts - self._last
+        self._last = pts
+        self._s, self._v, self._a = s, v, a
+        va = v * a
+        phase = np.where(
+            (va > 1e-12) | ((np.abs(v) <= 1e-12) & (np.abs(a) > 1e-12)),
+            0,
+            np.where(va < -1e-12, 1, 2),
+        )
+        changed = phase != self._phase
+        blend = s >= self._blend - _EPS
+        if changed.any() or finished.any() or blend.any():
+            self._phase = phase
+            for i in np.flatnonzero(changed).tolist():
+                r = self._rows[i]
+                events.append((r.owner, _PHASES[int(phase[i])], self.systems[r.system].axes[0]))
+            self._done = [
+                (self._rows[i], bool(finished[i]))
+                for i in np.flatnonzero(finished | blend).tolist()
+            ]
+        ri, col = self._ri, self._col
+        return Contribution(self._ax, dpos[ri, col], vel[ri, col], acc[ri, col])
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        """Ended profiles complete (termination 0 once the actual position is in tolerance),
+        blend points reached start the queued move, idle systems start their queued move."""
+        if self._done:
+            self._sync_out()
+            for r, ended in self._done:
+                cs = self.systems[r.system]
+                if cs.lead is r and cs.queue and r.s >= r.blend_s - _EPS:
+                    self._start_next(cs, events)  # blend: r keeps running underneath
+                if not ended or r not in cs.rows:
+                    continue
+                if r.termination == Termination.ACTUAL_TOLERANCE and r.owner == r.handle:
+                    r.settling = True
+                else:
+                    self._finish(cs, r, events)
+        for cs in self.systems:
+            if not (cs.rows or cs.queue):
+                continue
+            for r in [r for r in cs.rows if r.settling]:
+                self._sync_out()
+                err = float(np.linalg.norm(actual[list(cs.axes)] - r.segment.end))
+                if err <= cs.actual_tolerance + _EPS:
+                    cs.act_tol = True
+                    self._finish(cs, r, events)
+            lead = cs.lead
+            if lead is not None and lead.owner == lead.handle:
+                remaining = lead.segment.length - self._row_s(lead)
+                if remaining <= cs.command_tolerance + _EPS:
+                    cs.cmd_tol = True
+            if cs.lead is None and cs.queue and cs.stop == 0:
+                self._start_next(cs, events)
+
+    def _row_s(self, r: PathMove) -> float:
+        if not self._fresh and not self._dirty:
+            return float(self._s[self._rows.index(r)])
+        return r.s
+
+    def _finish(self, cs: CoordSystem, r: PathMove, events: Events) -> None:
+        """A row reached its end: PC for its move (or, for a stop, when the last row ends)."""
+        self.changed()
+        r.settling = False
+        if r in cs.rows:
+            cs.rows.remove(r)
+        self._rows.remove(r)
+        if cs.lead is r:
+            cs.lead = None
+        if r.owner == r.handle:
+            events.append((r.handle, EventKind.COMPLETE, cs.axes[0]))
+        elif not any(x.owner == r.owner for x in cs.rows):
+            events.append((r.owner, EventKind.COMPLETE, cs.axes[0]))
+            cs.stop = 0
+
+    def _start_next(self, cs: CoordSystem, events: Events) -> None:
+        self.start_row(cs, cs.queue.pop(0), 0.0, events)
+
+    def start_row(self, cs: CoordSystem, mv: PathMove, v0: float, events: Events) -> None:
+        """The move starts at this update: own clock 0, contribution 0, speed v0."""
+        self.changed()
+        mv.profile = plan_move(mv.segment.length, mv.limits, v0)
+        mv.owner = mv.handle
+        mv.n, mv.s0, mv.s, mv.v, mv.a = 0, 0.0, 0.0, v0, 0.0
+        last = np.zeros(3)
+        last[: cs.ndim] = mv.segment.start
+        mv.last = last
+        mv.blend_s = _blend_point(mv)
+        cs.rows.append(mv)
+        cs.lead = mv
+        cs.cmd_tol = cs.act_tol = False
+        self._rows.append(mv)
+        axis = cs.axes[0]
+        events.append((mv.handle, EventKind.IN_PROCESS, axis))
+        mv.phase = 0 if mv.profile.duration > 0 and v0 < mv.limits.speed else 2
+        events.append((mv.handle, _PHASES[mv.phase], axis))
+        if mv.segment.length <= _EPS and mv.profile.duration <= 0.0:
+            self._finish(cs, mv, events)
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        vel, acc = np.zeros(n), np.zeros(n)
+        self._sync_out()
+        for r in self._rows:
+            axes = list(self.systems[r.system].axes)
+            k = len(axes)
+            tan = self._tangent(r)
+            vel[axes] += r.v * tan[:k]
+            acc[axes] += r.a * tan[:k]
+        return vel, acc
+
+    @staticmethod
+    def _tangent(r: PathMove) -> np.ndarray:
+        t = np.zeros(3)
+        t[: r.segment.ndim] = r.segment.tangent(np.array([r.s]))[0]
+        return t
+
+    def edges(self) -> list[tuple[int, int]]:
+        return []  # time driven only (master-driven coordinated motion needs MDCC)
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        pass
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        """CoordinatedMotionStatus of the axes of systems with a move running or queued."""
+        cache = self._status_cache
+        if cache is not None and cache[0] == n:
+            return cache[1]
+        arr = np.zeros(n, dtype=bool)
+        for cs in self.systems:
+            if cs.rows or cs.queue:
+                arr[list(cs.axes)] = True
+        out = {"CoordinatedMotionStatus": arr}
+        self._status_cache = (n, out)
+        return out
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """A stop (MAS All) or a merging single-axis move on a member axis brings the
+        system to rest along its path at its maximum deceleration; servo off, shutdown and
+        homing end the path at once (the axis's velocity component is handed on)."""
+        v_axis, any_ended = 0.0, False
+        for cs_id, cs in enumerate(self.systems):
+            if axis not in cs.axes or not (cs.rows or cs.queue) or cs.stop:
+                continue
+            if reason is Ending.KILL:
+                self._sync_out()
+                k = cs.axes.index(axis)
+                for r in list(cs.rows):
+                    v_axis += r.v * float(self._tangent(r)[k])
+                self._end_all(cs, events)
+                any_ended = True
+            elif reason in (Ending.MERGE_ALL, StopType.ALL):
+                self.stop_system(cs_id, 0, cs.max_decel, cs.max_decel_jerk, events)
+        return v_axis, any_ended
+
+    def _end_all(self, cs: CoordSystem, events: Events) -> None:
+        """Every move of the system ends without PC (running and queued)."""
+        self.changed()
+        axis = cs.axes[0]
+        owners: list[int] = []
+        for r in cs.rows:
+            self._rows.remove(r)
+            if r.owner not in owners:
+                owners.append(r.owner)
+        for h in owners:
+            events.append((h, EventKind.ENDED, axis))
+        for q in cs.queue:
+            events.append((q.handle, EventKind.ENDED, axis))
+        cs.rows, cs.queue, cs.lead, cs.stop = [], [], None, 0
+
+    def stop_system(
+        self, cs_id: int, handle: int, decel: float, jerk: float, events: Events
+    ) -> None:
+        """MCS (handle; 0: no instruction waits for it): each running row decelerates to
+        rest along its own path; the queue is cancelled; the moves end without PC."""
+        cs = self.systems[cs_id]
+        self.changed()
+        axis = cs.axes[0]
+        for q in cs.queue:
+            events.append((q.handle, EventKind.ENDED, axis))
+        cs.queue = []
+        lim = Limits(0.0, decel, decel, jerk, jerk)
+        for r in cs.rows:
+            if r.owner == r.handle:
+                events.append((r.handle, EventKind.ENDED, axis))
+            r.owner = handle if handle else -cs_id - 1
+            r.profile = plan_stop(r.v, lim)
+            r.s0, r.n = r.s, 0
+            r.settling = False
+            r.blend_s = math.inf
+        cs.lead = None
+        if cs.rows:
+            cs.stop = handle if handle else -cs_id - 1
+            events.append((cs.stop, EventKind.DECEL, axis))
+        elif handle:
+            events.append((handle, EventKind.COMPLETE, axis))
+
+    def busy(self, axis: int) -> bool:
+        return any(axis in cs.axes and (cs.rows or cs.queue) for cs in self.systems)
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
+    # -- what the bridge shows ---------------------------------------------------
+    def profile_of(self, handle: int) -> MoveProfile | None:
+        """The planned profile (path parameter over time) of a running move."""
+        for r in self._rows:
+            if r.handle == handle and r.owner == handle:
+                return r.profile
+        return None
+
+    def system_status(self, cs_id: int) -> dict[str, bool]:
+        """The coordinate system's status members (names of the COORDINATE_SYSTEM type)."""
+        cs = self.systems[cs_id]
+        self._sync_out()
+        moving = [r for r in cs.rows if r.owner == r.handle]
+        blending = len(moving) > 1
+        lead = cs.lead
+        accel = decel = False
+        if lead is not None and not blending and cs.stop == 0:
+            accel, decel = lead.phase == 0, lead.phase == 1
+        elif cs.stop and cs.rows:
+            decel = any(r.v > _EPS for r in cs.rows)
+        pending = bool(cs.queue) and (lead is not None or len(cs.queue) > 1)
+        return {
+            "MotionStatus": bool(cs.rows or cs.queue),
+            "AccelStatus": accel,
+            "DecelStatus": decel,
+            "ActualPosToleranceStatus": cs.act_tol,
+            "CommandPosToleranceStatus": cs.cmd_tol,
+            "StoppingStatus": cs.stop != 0,
+            "MoveStatus": bool(moving) or bool(cs.queue and cs.stop == 0),
+            "MoveTransitionStatus": blending,
+            "MovePendingStatus": pending,
+            "MovePendingQueueFullStatus": pending,
+        }
+
+
+def _blend_point(mv: PathMove) -> float:
+    """Path parameter from which the queued move may start (inf: only after the end)."""
+    length = mv.segment.length
+    if mv.termination in (Termination.COMMAND_TOLERANCE, Termination.COMMAND_TOLERANCE_PROGRAMMED):
+        return max(length - max(mv.tolerance, 0.0), 0.0)
+    if mv.termination in _AT_DECEL_POINT:
+        pr = mv.profile
+        assert pr is not None
+        peak = float(np.max(np.abs(pr.v0))) if len(pr.v0) else 0.0
+        return max(length - change_distance(peak, 0.0, mv.limits), 0.0)
+    return math.inf
+
+
+# -- start calls (bound as MotionGroup methods) --------------------------------------
+
+
+def add_coordinate_system(group: MotionGroup, axes: list[int]) -> int:
+    """Register a coordinate system of 2 or 3 of the group's axes; returns its index."""
+    group.paths.systems.append(CoordSystem(tuple(axes)))
+    group.paths.changed()
+    return len(group.paths.systems) - 1
+
+
+def path_start_point(group: MotionGroup, cs_id: int) -> np.ndarray:
+    """Where a move executed now starts: the end of the last accepted move, else the
+    command position of the axes."""
+    cs = group.paths.systems[cs_id]
+    end = cs.end_point()
+    if end is not None:
+        return np.array(end, dtype=float)
+    return group.command_position[list(cs.axes)].astype(float)
+
+
+def start_path(
+    group: MotionGroup,
+    cs_id: int,
+    segment: Segment,
+    limits: Limits,
+    termination: int,
+    tolerance: float,
+    merge: int,
+    merge_current: bool,
+    rebuild: Build | None = None,
+) -> StartResult:
+    """MCLM/MCCM with a validated segment from path_start_point. Merge Disabled queues
+    behind the active move (one deep, else error 43); a merge ends the running and queued
+    coordinated moves (All: also the axes' single-axis motion) at the next update and
+    continues from there with the speed along the new path (Current: at that speed)."""
+    paths = group.paths
+    cs = paths.systems[cs_id]
+    h = group.new_handle()
+    mv = PathMove(h, cs_id, segment, limits, termination, tolerance)
+    if merge == MergeMode.DISABLED:
+        busy = (cs.lead is not None and cs.stop == 0) + len(cs.queue)
+        if busy >= 2:
+            return StartResult(error=MotionError.COORDINATE_SYSTEM_QUEUE_FULL)
+        cs.queue.append(mv)
+        paths.changed()
+        return StartResult(handle=h)
+
+    def apply(ev: Events) -> None:
+        paths._sync_out()
+        axes = list(cs.axes)
+        vel = group.command_velocity[axes].astype(float)
+        paths._end_all(cs, ev)
+        if merge == MergeMode.ALL:
+            for ax in axes:
+                _, _ = group.end_axis(ax, Ending.MERGE_ALL, ev)
+        start = group.command_position[axes].astype(float)
+        seg = mv.segment
+        if rebuild is not None:  # the system has moved since the execution
+            again = rebuild(start)
+            if isinstance(again, Segment):
+                seg = again
+        mv.segment = seg
+        tan = seg.tangent(np.array([0.0]))[0] if seg.length > _EPS else np.zeros(len(axes))
+        v0 = max(float(vel @ tan), 0.0)
+        if merge_current and v0 > _EPS:
+            mv.limits = Limits(
+                float(np.linalg.norm(vel)),
+                limits.accel,
+                limits.decel,
+                limits.accel_jerk,
+                limits.decel_jerk,
+            )
+        paths.start_row(cs, mv, v0, ev)
+
+    group.after_update(apply)
+    return StartResult(handle=h)
+
+
+def stop_path(
+    group: MotionGroup,
+    cs_id: int,
+    stop_all: bool,
+    decel: float,
+    jerk: float,
+) -> StartResult:
+    """MCS: at the next update the system decelerates to rest along its path (All: the
+    single-axis motion of its axes stops too, with their configured limits)."""
+    h = group.new_handle()
+    paths = group.paths
+    cs = paths.systems[cs_id]
+
+    def apply(ev: Events) -> None:
+        paths._sync_out()
+        paths.stop_system(cs_id, h, decel, jerk, ev)
+        if stop_all:
+            for ax in cs.axes:
+                group.stop(ax, StopType.ALL)
+
+    group.after_update(apply)
+    return StartResult(handle=h)
+
+
+def path_trajectory(
+    segment: Segment, profile: MoveProfile, t: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Points (len(t), ndim) and vector speeds of a move run from rest at times t (plots,
+    tests): the whole trajectory in one call."""
+    s, v, _ = profile.evaluate(np.asarray(t, dtype=float))
+    return segment.points(s), v
