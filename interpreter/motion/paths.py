@@ -417,12 +417,13 @@ class PathSet:
         for q in cs.queue:
             events.append((q.handle, EventKind.ENDED, axis))
         cs.queue = []
-        lim = Limits(0.0, decel, decel, jerk, jerk)
         for r in cs.rows:
             if r.owner == r.handle:
                 events.append((r.handle, EventKind.ENDED, axis))
             r.owner = handle if handle else -cs_id - 1
-            r.profile = plan_stop(r.v, lim)
+            # a trapezoidal move stops with a trapezoidal ramp; S-curve with the stop's jerk
+            j = jerk if math.isfinite(r.limits.decel_jerk) else math.inf
+            r.profile = plan_stop(r.v, Limits(0.0, decel, decel, j, j))
             r.s0, r.n = r.s, 0
             r.settling = False
             r.blend_s = math.inf
