@@ -250,6 +250,9 @@ def _queue(
 
     rt.track(s.group, h, Tracked(ctl, tuple(s.axes), pc=True, on_start=on_start, on_end=on_end))
     set_bits(ctl, DN=1, IP=1)
+    # the queue bits show at once: a program tests MovePendingQueueFullStatus before it
+    # queues the next move in the same scan
+    _write_status(s)
 
 
 def _event_points(prof: MoveProfile | None, events: ArrayRef, out: ArrayRef) -> None:
