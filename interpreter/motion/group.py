@@ -491,10 +491,17 @@ class MotionGroup:
             parts = [c for c in parts if len(c.axis)]
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
             if parts:
-                axes = np.concatenate([c.axis for c in parts])
-                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
-                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
-                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
+                if len(parts) == 1:  # one kind of motion running: nothing to join
+                    c0 = parts[0]
+                    axes, dp, vv, aa = c0.axis, c0.dpos, c0.vel, c0.acc
+                else:
+                    axes = np.concatenate([c.axis for c in parts])
+                    dp = np.concatenate([c.dpos for c in parts])
+                    vv = np.concatenate([c.vel for c in parts])
+                    aa = np.concatenate([c.acc for c in parts])
+                dpos = np.bincount(axes, dp, n)
+                vel = np.bincount(axes, vv, n)
+                acc = np.bincount(axes, aa, n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]

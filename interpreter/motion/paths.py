@@ -47,6 +47,7 @@ if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the
 Build = Callable[[np.ndarray], Segment | GeometryError]
 
 _EPS = 1e-9
+_CLOCK_EPS = 1e-9  # s: a profile whose duration the update clock misses by rounding ends
 
 
 class Termination:
@@ -87,6 +88,7 @@ class PathMove:
     last: np.ndarray = field(default_factory=lambda: np.zeros(3))  # point reached (3D)
     phase: int = -1  # 0 accel, 1 decel, 2 constant
     blend_s: float = math.inf  # s from which the queued move may start
+    tol_s: float = math.inf  # s from which the remaining path is within CommandTolerance
     settling: bool = False  # termination 0: profile done, waiting for the actual position
 
 
@@ -133,24 +135,36 @@ class PathSet:
         # rows whose profile ended (True) or that reached their blend point, latest step
         self._done: list[tuple[PathMove, bool]] = []
         self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
+        self._check = False  # end_update must look at the systems (a queue, a settling move)
+        self._settling = 0  # rows waiting for the actual position (termination 0)
+        self._k = self.CHUNK
 
     # -- rows ------------------------------------------------------------------
+    # Paths are time driven and deterministic between events (a start, a blend, an end, a
+    # stop), so the rows are evaluated for the next CHUNK updates at once, vectorised over
+    # rows and time; an update then hands out one precomputed row. Anything that changes
+    # the rows (changed()) drops the rest of the chunk.
+    CHUNK = 64
+
     def _sync_out(self) -> None:
+        """The state of the latest step back into the row objects."""
         if self._fresh or self._dirty:
             return
-        for k, r in enumerate(self._rows):
-            r.n = int(self._n[k])
-            r.s = float(self._s[k])
-            r.v = float(self._v[k])
-            r.a = float(self._a[k])
-            r.last = self._last[k].copy()
-            r.phase = int(self._phase[k])
+        k = self._k
+        for i, r in enumerate(self._rows):
+            r.n = int(self._n0[i]) + k + 1
+            r.s = float(self._S[k, i])
+            r.v = float(self._V[k, i])
+            r.a = float(self._A[k, i])
+            r.last = self._P[k, i].copy()
+            r.phase = int(self._PH[k, i])
         self._fresh = True
 
     def changed(self) -> None:
         """Rows or queues changed: state back into the objects, arrays rebuilt at the next step."""
         self._sync_out()
         self._dirty = True
+        self._check = True
         self._status_cache = None
 
     def _rebuild(self) -> None:
@@ -171,17 +185,19 @@ class PathSet:
         self._coef = coef
         self._base = np.arange(m, dtype=np.intp) * width
         self._duration = dur
-        self._n = np.array([r.n for r in rows], dtype=np.int64)
+        self._s_end = np.array(
+            [r.s0 + (r.profile.end_position if r.profile is not None else 0.0) for r in rows],
+            dtype=float,
+        )
+        self._n0 = np.array([r.n for r in rows], dtype=np.int64)
         self._s0 = np.array([r.s0 for r in rows], dtype=float)
-        self._s = np.array([r.s for r in rows], dtype=float)
-        self._v = np.array([r.v for r in rows], dtype=float)
-        self._a = np.array([r.a for r in rows], dtype=float)
-        self._last = np.array([r.last for r in rows], dtype=float).reshape(m, 3)
-        self._phase = np.array([r.phase for r in rows], dtype=np.int64)
+        self._last0 = np.array([r.last for r in rows], dtype=float).reshape(m, 3)
+        self._phase0 = np.array([r.phase for r in rows], dtype=np.int64)
         queued = {id(cs.lead) for cs in self.systems if cs.queue and cs.lead is not None}
         self._blend = np.array(
             [r.blend_s if id(r) in queued else math.inf for r in rows], dtype=float
         )
+        self._tol = np.array([r.tol_s for r in rows], dtype=float)
         # one contribution entry per (row, axis of its system)
         ax: list[int] = []
         ri: list[int] = []
@@ -194,8 +210,60 @@ class PathSet:
         self._ax = np.array(ax, dtype=np.intp)
         self._ri = np.array(ri, dtype=np.intp)
         self._col = np.array(col, dtype=np.intp)
-        self._all = np.arange(m, dtype=np.intp)
+        self._k = self.CHUNK  # no chunk yet
         self._dirty = False
+        self._fresh = True
+
+    def _chunk(self, cup: float) -> None:
+        """Evaluate every row at its next CHUNK updates (one numpy pass over rows x time)."""
+        m = len(self._rows)
+        kk = self.CHUNK
+        n = self._n0[None, :] + np.arange(1, kk + 1)[:, None]  # (K, m)
+        t = n * cup
+        seg = (self._t0[None, :, :] <= t[:, :, None]).sum(axis=2) - 1
+        c = self._coef[self._base[None, :] + seg]  # (K, m, 5)
+        d = t - c[..., 0]
+        v0, a0, jj = c[..., 2], c[..., 3], c[..., 4]
+        s = self._s0[None, :] + c[..., 1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
+        v = v0 + d * (a0 + d * jj / 2.0)
+        a = a0 + d * jj
+        # the last update of a profile lands on its end exactly (the segment's end point),
+        # also when the clock passes the duration by rounding (0.1 + 0.1 + 0.1 > 0.3)
+        finished = t >= self._duration[None, :] - _CLOCK_EPS
+        s = np.where(finished, self._s_end[None, :], s)
+        tb = self.table
+        rows = np.broadcast_to(np.arange(m), (kk, m)).reshape(-1)
+        sf = s.reshape(-1)
+        pts = tb.points(rows, sf).reshape(kk, m, 3)
+        tan = tb.tangents(rows, sf).reshape(kk, m, 3)
+        # curvature term of the acceleration: d2p/ds2 = -k^2 (cos(ks) A + sin(ks) B) on arcs
+        k = tb.rate[rows]
+        ks = k * np.clip(sf, 0.0, tb.length[rows])
+        k2 = k * k
+        curv = -(k2 * np.cos(ks))[:, None] * tb.a[rows] - (k2 * np.sin(ks))[:, None] * tb.b[rows]
+        curv = curv.reshape(kk, m, 3)
+        vel = v[..., None] * tan
+        acc = a[..., None] * tan + (v * v)[..., None] * curv
+        dpos = np.diff(pts, axis=0, prepend=self._last0[None, :, :])
+        va = v * a
+        phase = np.where(
+            (va > 1e-12) | ((np.abs(v) <= 1e-12) & (np.abs(a) > 1e-12)),
+            0,
+            np.where(va < -1e-12, 1, 2),
+        )
+        prev = np.vstack((self._phase0[None, :], phase[:-1]))
+        changed = phase != prev
+        blend = s >= self._blend[None, :] - _EPS
+        tol = s >= self._tol[None, :] - _EPS
+        self._changed, self._finished, self._blend_hit, self._tol_hit = (
+            changed, finished, blend, tol,
+        )  # fmt: skip
+        self._flags = (changed | finished | blend | tol).any(axis=1).tolist()
+        ri, col = self._ri, self._col
+        self._dpos = dpos[:, ri, col]
+        self._vel = vel[:, ri, col]
+        self._acc = acc[:, ri, col]
+        self._S, self._V, self._A, self._P, self._PH = s, v, a, pts, phase
 
     # -- ProcessSet ------------------------------------------------------------
     def begin_update(self) -> None:
@@ -210,59 +278,61 @@ class PathSet:
         events: Events,
     ) -> Contribution:
         """Advance every path row one update (paths are time driven: level 0 only)."""
-        self._done = []
+        if self._done:
+            self._done = []
         if not self._rows or (level_sel is not None and level_sel[1] != 0):
             return EMPTY
         if self._dirty:
             self._rebuild()
+        k = self._k + 1
+        if k >= self.CHUNK:  # the next stretch of updates, from the state of the last one
+            if self._k < self.CHUNK:
+                self._n0 = self._n0 + self._k + 1
+                self._s_base_shift()
+            self._chunk(cup)
+            k = 0
+        self._k = k
         self._fresh = False
-        self._n += 1
-        t = self._n * cup
-        seg = (self._t0 <= t[:, None]).sum(axis=1) - 1
-        c = self._coef[self._base + seg]
-        d = t - c[:, 0]
-        v0, a0, jj = c[:, 2], c[:, 3], c[:, 4]
-        s = self._s0 + c[:, 1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
-        v = v0 + d * (a0 + d * jj / 2.0)
-        a = a0 + d * jj
-        finished = t >= self._duration
-        tb = self.table
-        rows = self._all
-        pts = tb.points(rows, s)
-        tan = tb.tangents(rows, s)
-        # curvature term of the acceleration: d2p/ds2 = -k^2 (cos(ks) A + sin(ks) B) on arcs
-        k = tb.rate
-        ks = k * np.clip(s, 0.0, tb.length)
-        k2 = k * k
-        curv = -(k2 * np.cos(ks))[:, None] * tb.a - (k2 * np.sin(ks))[:, None] * tb.b
-        vel = v[:, None] * tan
-        acc = a[:, None] * tan + (v * v)[:, None] * curv
-        dpos = pts - self._last
-        self._last = pts
-        self._s, self._v, self._a = s, v, a
-        va = v * a
-        phase = np.where(
-            (va > 1e-12) | ((np.abs(v) <= 1e-12) & (np.abs(a) > 1e-12)),
-            0,
-            np.where(va < -1e-12, 1, 2),
-        )
-        changed = phase != self._phase
-        blend = s >= self._blend - _EPS
-        if changed.any() or finished.any() or blend.any():
-            self._phase = phase
-            for i in np.flatnonzero(changed).tolist():
-                r = self._rows[i]
-                events.append((r.owner, _PHASES[int(phase[i])], self.systems[r.system].axes[0]))
-            self._done = [
-                (self._rows[i], bool(finished[i]))
-                for i in np.flatnonzero(finished | blend).tolist()
-            ]
-        ri, col = self._ri, self._col
-        return Contribution(self._ax, dpos[ri, col], vel[ri, col], acc[ri, col])
+        if self._flags[k]:
+            self._events(k, events)
+        return Contribution(self._ax, self._dpos[k], self._vel[k], self._acc[k])
+
+    def _s_base_shift(self) -> None:
+        """A chunk was used up: the next one continues from its last row."""
+        last = self.CHUNK - 1
+        self._last0 = self._P[last].copy()
+        self._phase0 = self._PH[last].copy()
+
+    def _events(self, k: int, events: Events) -> None:
+        """Phase changes, ends, blend points and command tolerance reached at update k."""
+        done: list[tuple[PathMove, bool]] = []
+        for i in np.flatnonzero(self._changed[k]).tolist():
+            r = self._rows[i]
+            events.append((r.owner, _PHASES[int(self._PH[k, i])], self.systems[r.system].axes[0]))
+        for i in np.flatnonzero(self._tol_hit[k]).tolist():
+            r = self._rows[i]
+            cs = self.systems[r.system]
+            if cs.lead is r:
+                cs.cmd_tol = True
+            r.tol_s = math.inf
+            self._check = True
+            self._tol[i] = math.inf  # reported once (the chunk keeps the old flags)
+            self._tol_hit[k + 1 :, i] = False
+            self._flags = (
+                (self._changed | self._finished | self._blend_hit | self._tol_hit)
+                .any(axis=1)
+                .tolist()
+            )
+        for i in np.flatnonzero(self._finished[k] | self._blend_hit[k]).tolist():
+            done.append((self._rows[i], bool(self._finished[k, i])))
+        self._done = done
 
     def end_update(self, actual: np.ndarray, events: Events) -> None:
         """Ended profiles complete (termination 0 once the actual position is in tolerance),
         blend points reached start the queued move, idle systems start their queued move."""
+        if not (self._done or self._check or self._settling):
+            return
+        self._check = False
         if self._done:
             self._sync_out()
             for r, ended in self._done:
@@ -273,8 +343,10 @@ class PathSet:
                     continue
                 if r.termination == Termination.ACTUAL_TOLERANCE and r.owner == r.handle:
                     r.settling = True
+                    self._settling += 1
                 else:
                     self._finish(cs, r, events)
+            self._done = []
         for cs in self.systems:
             if not (cs.rows or cs.queue):
                 continue
@@ -284,22 +356,15 @@ class PathSet:
                 if err <= cs.actual_tolerance + _EPS:
                     cs.act_tol = True
                     self._finish(cs, r, events)
-            lead = cs.lead
-            if lead is not None and lead.owner == lead.handle:
-                remaining = lead.segment.length - self._row_s(lead)
-                if remaining <= cs.command_tolerance + _EPS:
-                    cs.cmd_tol = True
+                self._check = True  # look again at the next update
             if cs.lead is None and cs.queue and cs.stop == 0:
                 self._start_next(cs, events)
-
-    def _row_s(self, r: PathMove) -> float:
-        if not self._fresh and not self._dirty:
-            return float(self._s[self._rows.index(r)])
-        return r.s
 
     def _finish(self, cs: CoordSystem, r: PathMove, events: Events) -> None:
         """A row reached its end: PC for its move (or, for a stop, when the last row ends)."""
         self.changed()
+        if r.settling:
+            self._settling -= 1
         r.settling = False
         if r in cs.rows:
             cs.rows.remove(r)
@@ -325,6 +390,7 @@ class PathSet:
         last[: cs.ndim] = mv.segment.start
         mv.last = last
         mv.blend_s = _blend_point(mv)
+        mv.tol_s = mv.segment.length - cs.command_tolerance
         cs.rows.append(mv)
         cs.lead = mv
         cs.cmd_tol = cs.act_tol = False
@@ -398,6 +464,9 @@ class PathSet:
         owners: list[int] = []
         for r in cs.rows:
             self._rows.remove(r)
+            if r.settling:
+                self._settling -= 1
+                r.settling = False
             if r.owner not in owners:
                 owners.append(r.owner)
         for h in owners:
@@ -425,8 +494,10 @@ class PathSet:
             j = jerk if math.isfinite(r.limits.decel_jerk) else math.inf
             r.profile = plan_stop(r.v, Limits(0.0, decel, decel, j, j))
             r.s0, r.n = r.s, 0
+            if r.settling:
+                self._settling -= 1
             r.settling = False
-            r.blend_s = math.inf
+            r.blend_s = r.tol_s = math.inf
         cs.lead = None
         if cs.rows:
             cs.stop = handle if handle else -cs_id - 1
