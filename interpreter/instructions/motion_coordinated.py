@@ -15,8 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from stdlib import catalog
+
 from ..motion import MotionError, ProfileShape, StartResult
 from ..motion.path_geometry import GeometryError, Segment, circle, line
+from ..motion.paths import Termination
 from ..motion.profiles import Limits, MoveProfile
 from ..runtime.motion import Axis, Group, MotionRuntime, Tracked
 from ..runtime.motion_layout import AC, pack, packed_words, set_bits, struct_type
@@ -46,10 +49,19 @@ _STATUS_MEMBERS = (
     "CommandPosToleranceStatus", "StoppingStatus", "MoveStatus", "MoveTransitionStatus",
     "MovePendingStatus", "MovePendingQueueFullStatus",
 )  # fmt: skip
-_TERMINATION_TYPES = range(7)
-_COMMAND_TOLERANCE_PROGRAMMED = 6
-# CoordStopType (catalog): All 0, Coordinated Move 2, Coordinated Transform 3
-_STOP_ALL, _STOP_MOVE, _STOP_TRANSFORM = 0, 2, 3
+_TERMINATION_TYPES = frozenset(int(t) for t in Termination)
+_STOP_TYPES = catalog().enum("CoordStopType")  # All, Coordinated Move, Coordinated Transform
+
+
+def _stop_type(text: str) -> int:
+    ev = _STOP_TYPES.lookup(text)
+    assert ev is not None, text
+    return ev.value
+
+
+_STOP_ALL = _stop_type("All")
+_STOP_MOVE = _stop_type("Coordinated Move")
+_STOP_TRANSFORM = _stop_type("Coordinated Transform")
 
 
 @dataclass(eq=False, slots=True)
@@ -192,7 +204,7 @@ def _common(
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, first + 12)
         return None
     ct = real(command_tolerance)
-    if tt == _COMMAND_TOLERANCE_PROGRAMMED and not (math.isfinite(ct) and ct >= 0.0):
+    if tt == Termination.COMMAND_TOLERANCE_PROGRAMMED and not (math.isfinite(ct) and ct >= 0.0):
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, first + 13)
         return None
     ld = whole(lock_direction)
@@ -210,7 +222,7 @@ def _common(
         dyn.speed, dyn.accel, dyn.decel, ProfileShape(shape), dyn.accel_jerk, dyn.decel_jerk
     )
     cs = s.group.core.paths.systems[s.index]
-    tol = ct if tt == _COMMAND_TOLERANCE_PROGRAMMED else cs.command_tolerance
+    tol = ct if tt == Termination.COMMAND_TOLERANCE_PROGRAMMED else cs.command_tolerance
     return _Common(lim, tt, tol, mm, ms == 1)
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from enum import IntEnum
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -50,7 +51,7 @@ _EPS = 1e-9
 _CLOCK_EPS = 1e-9  # s: a profile whose duration the update clock misses by rounding ends
 
 
-class Termination:
+class Termination(IntEnum):
     """TerminationType operand values (catalog enum TerminationType)."""
 
     ACTUAL_TOLERANCE = 0
@@ -62,10 +63,14 @@ class Termination:
     COMMAND_TOLERANCE_PROGRAMMED = 6
 
 
-# termination types whose move lets the queued one start before it has ended
-_BLENDING = frozenset({2, 3, 4, 5, 6})
-# ... and of those, the ones that blend from the deceleration point
-_AT_DECEL_POINT = frozenset({3, 4, 5})
+# termination types that blend from the active move's deceleration point
+_AT_DECEL_POINT = frozenset(
+    {
+        Termination.NO_DECEL,
+        Termination.FOLLOW_CONTOUR_CONSTRAINED,
+        Termination.FOLLOW_CONTOUR_UNCONSTRAINED,
+    }
+)
 
 
 @dataclass(slots=True)
