@@ -143,6 +143,9 @@ class PathSet:
         self._check = False  # end_update must look at the systems (a queue, a settling move)
         self._settling = 0  # rows waiting for the actual position (termination 0)
         self._k = self.CHUNK
+        # lands the axes of a system that came to rest exactly on its end point (the
+        # per-update increments add up to it only to rounding); set by the group
+        self.snap: Callable[[tuple[int, ...], np.ndarray], None] | None = None
 
     # -- rows ------------------------------------------------------------------
     # Paths are time driven and deterministic between events (a start, a blend, an end, a
@@ -378,6 +381,8 @@ class PathSet:
             cs.lead = None
         if r.owner == r.handle:
             events.append((r.handle, EventKind.COMPLETE, cs.axes[0]))
+            if not cs.rows and self.snap is not None:
+                self.snap(cs.axes, r.segment.end)
         elif not any(x.owner == r.owner for x in cs.rows):
             events.append((r.owner, EventKind.COMPLETE, cs.axes[0]))
             cs.stop = 0
@@ -574,7 +579,23 @@ def add_coordinate_system(group: MotionGroup, axes: list[int]) -> int:
     """Register a coordinate system of 2 or 3 of the group's axes; returns its index."""
     group.paths.systems.append(CoordSystem(tuple(axes)))
     group.paths.changed()
+    if group.paths.snap is None:
+        group.paths.snap = lambda ax, end: _snap(group, ax, end)
     return len(group.paths.systems) - 1
+
+
+def _snap(group: MotionGroup, axes: tuple[int, ...], end: np.ndarray) -> None:
+    """A path ended with nothing else moving its axes: the command position is its end
+    point to rounding (1e-9 relative); make it the end point itself. Anything else moving
+    an axis keeps it away from the end, and then nothing changes."""
+    idx = list(axes)
+    delta = np.asarray(end, dtype=float) - group.command_position[idx]
+    if np.all(np.abs(delta) <= 1e-9 * np.maximum(1.0, np.abs(end))):
+        group.command_position[idx] += delta
+        virtual = group.virtual[idx]
+        group.actual_position[idx] = np.where(
+            virtual, group.command_position[idx], group.actual_position[idx]
+        )
 
 
 def path_start_point(group: MotionGroup, cs_id: int) -> np.ndarray:
