@@ -380,3 +380,40 @@ def test_mccm_geometry_error_is_reported(mp) -> None:
     decls = "  via : REAL[2] := [15.0, 20.0];\n"
     tr = mp.trace(prog(decls, once(mccm("c1", "p1", 0, "via", 0))), ["c1.ER", "c1.ERR", "c1.DN"], 2)
     assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.DN")] == [1, 44, 0]
+
+
+MAJ_X = (
+    "MAJ(X, c4, forward, 1.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, "
+    "trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);"
+)
+
+
+def test_merge_disabled_superimposes_single_axis_motion(mp) -> None:
+    # a jog of X at 1 unit/s (ramp 0.01 s) runs under the MCLM to (30, 40): X carries both,
+    # so X - 3/4 Y is the jog alone: 0.005 + (t - t0 - 0.01) once at speed
+    body = once(MAJ_X + mclm("c1", "p1"))
+    tr = mp.trace(prog("", body), ["X.CommandPosition", "Y.CommandPosition", "c4.IP"], 3000)
+    for t in (1.0, 2.0, 2.9):
+        jog = 0.005 + (t - T0 - 0.01)
+        x, y = tr.at(t, "X.CommandPosition"), tr.at(t, "Y.CommandPosition")
+        assert x - 0.75 * y == pytest.approx(jog, abs=F32)
+    assert tr.at(2.9, "c4.IP") == 1
+
+
+def test_merge_all_motion_ends_the_jog(mp) -> None:
+    body = once(MAJ_X) + f"IF k = 500 THEN {mclm('c1', 'p1', merge='allmotion')} END_IF;"
+    tr = mp.trace(prog("", body), ["c4.IP", "c1.PC", "X.CommandPosition"], 6000)
+    assert tr.at(0.4, "c4.IP") == 1
+    assert tr.at(0.6, "c4.IP") == 0
+    assert tr.col("c1.PC")[-1] == 1
+    assert tr.col("X.CommandPosition")[-1] == 30.0  # the absolute end point, jog ended
+
+
+def test_event_distance_gives_the_time_to_the_point(mp) -> None:
+    # L 50, V 10, A 100: 5 units before the end (s = 45) is reached at
+    # 0.1 + (45 - 0.5) / 10 = 4.55 s after the start; 1 unit before: 4.95 s
+    decls = "  ev : REAL[2] := [5.0, 1.0];\n  cd : REAL[2];\n"
+    stmt = mclm("c1", "p1").replace("0, none, 0, 0);", "0, none, ev, cd);")
+    tr = mp.trace(prog(decls, once(stmt)), ["cd[0]", "cd[1]"], 5)
+    assert tr.at(0.004, "cd[0]") == pytest.approx(4.55, abs=1e-6)
+    assert tr.at(0.004, "cd[1]") == pytest.approx(4.95, abs=1e-6)
