@@ -95,6 +95,25 @@ class PathMove:
     blend_s: float = math.inf  # s from which the queued move may start
     tol_s: float = math.inf  # s from which the remaining path is within CommandTolerance
     settling: bool = False  # termination 0: profile done, waiting for the actual position
+    # packed once per segment / profile for the set's arrays (_pack): the SegmentTable row
+    # (start, end, a, b, rate, length, arc) and the profile's (t0, p0, v0, a0, j) rows
+    geo: np.ndarray = field(default_factory=lambda: np.zeros(15))
+    coef: np.ndarray = field(default_factory=lambda: np.zeros((1, 5)))
+    duration: float = 0.0
+
+    def use_profile(self, profile: MoveProfile) -> None:
+        """Run this profile from here (its table packed for the set's arrays)."""
+        self.profile = profile
+        self.coef = np.column_stack((profile.t0, profile.p0, profile.v0, profile.a0, profile.j))
+        self.duration = profile.duration
+
+    def pack_segment(self) -> None:
+        seg = self.segment
+        table = SegmentTable.of([seg])
+        self.geo = np.concatenate(
+            (table.start[0], table.end[0], table.a[0], table.b[0],
+             [table.rate[0], table.length[0], float(table.arc[0])])
+        )  # fmt: skip
 
 
 @dataclass(slots=True)
@@ -142,7 +161,8 @@ class PathSet:
         self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
         self._check = False  # end_update must look at the systems (a queue, a settling move)
         self._settling = 0  # rows waiting for the actual position (termination 0)
-        self._k = self.CHUNK
+        self._k = -1  # row of the chunk handed out by the latest step
+        self._K = 0  # rows in the chunk (0: none)
         # lands the axes of a system that came to rest exactly on its end point (the
         # per-update increments add up to it only to rounding); set by the group
         self.snap: Callable[[tuple[int, ...], np.ndarray], None] | None = None
@@ -176,27 +196,26 @@ class PathSet:
         self._status_cache = None
 
     def _rebuild(self) -> None:
+        """The struct-of-arrays form of the rows, from what each row packed once (its
+        segment's table row and its profile's segment table: _pack)."""
         rows = self._rows
         m = len(rows)
-        self.table = SegmentTable.of([r.segment for r in rows])
-        width = max((len(r.profile.t0) for r in rows if r.profile is not None), default=1)
-        self._t0 = np.full((m, width), np.inf)
-        coef = np.zeros((m * width, 5))
-        dur = np.zeros(m)
+        geo = np.array([r.geo for r in rows], dtype=float).reshape(m, 15)
+        self.table = SegmentTable(
+            geo[:, 0:3], geo[:, 3:6], geo[:, 6:9], geo[:, 9:12], geo[:, 12], geo[:, 13],
+            geo[:, 14] > 0.5,
+        )  # fmt: skip
+        width = max((len(r.coef) for r in rows), default=1)
+        coef = np.zeros((m, width, 5))
+        coef[:, :, 0] = np.inf  # padding never starts
         for i, r in enumerate(rows):
-            pr = r.profile
-            assert pr is not None
-            k = len(pr.t0)
-            self._t0[i, :k] = pr.t0
-            coef[i * width : i * width + k] = np.column_stack((pr.t0, pr.p0, pr.v0, pr.a0, pr.j))
-            dur[i] = pr.duration
-        self._coef = coef
+            coef[i, : len(r.coef)] = r.coef
+        self._t0 = coef[:, :, 0].copy()
+        coef[:, :, 0] = np.where(np.isinf(coef[:, :, 0]), 0.0, coef[:, :, 0])
+        self._coef = coef.reshape(m * width, 5)
         self._base = np.arange(m, dtype=np.intp) * width
-        self._duration = dur
-        self._s_end = np.array(
-            [r.s0 + (r.profile.end_position if r.profile is not None else 0.0) for r in rows],
-            dtype=float,
-        )
+        self._duration = np.array([r.duration for r in rows], dtype=float)
+        self._s_end = np.array([r.s0 + r.coef[-1, 1] for r in rows], dtype=float)
         self._n0 = np.array([r.n for r in rows], dtype=np.int64)
         self._s0 = np.array([r.s0 for r in rows], dtype=float)
         self._last0 = np.array([r.last for r in rows], dtype=float).reshape(m, 3)
@@ -218,14 +237,20 @@ class PathSet:
         self._ax = np.array(ax, dtype=np.intp)
         self._ri = np.array(ri, dtype=np.intp)
         self._col = np.array(col, dtype=np.intp)
-        self._k = self.CHUNK  # no chunk yet
+        self._k, self._K = -1, 0  # no chunk yet
         self._dirty = False
         self._fresh = True
 
     def _chunk(self, cup: float) -> None:
-        """Evaluate every row at its next CHUNK updates (one numpy pass over rows x time)."""
+        """Evaluate every row at its next updates (one numpy pass over rows x time): CHUNK
+        of them, or up to the update where the first profile ends (the rows change there)."""
         m = len(self._rows)
+        rem = self._duration - self._n0 * cup  # time to each profile's end (inf: never)
+        rem = rem[(rem > _CLOCK_EPS) & np.isfinite(rem)]
         kk = self.CHUNK
+        if len(rem):
+            kk = max(1, min(kk, math.ceil(float(rem.min()) / cup - 1e-6) + 1))
+        self._K = kk
         n = self._n0[None, :] + np.arange(1, kk + 1)[:, None]  # (K, m)
         t = n * cup
         seg = (self._t0[None, :, :] <= t[:, :, None]).sum(axis=2) - 1
@@ -293,9 +318,9 @@ class PathSet:
         if self._dirty:
             self._rebuild()
         k = self._k + 1
-        if k >= self.CHUNK:  # the next stretch of updates, from the state of the last one
-            if self._k < self.CHUNK:
-                self._n0 = self._n0 + self._k + 1
+        if k >= self._K:  # the next stretch of updates, from the state of the last one
+            if self._K:
+                self._n0 = self._n0 + self._K
                 self._s_base_shift()
             self._chunk(cup)
             k = 0
@@ -307,7 +332,7 @@ class PathSet:
 
     def _s_base_shift(self) -> None:
         """A chunk was used up: the next one continues from its last row."""
-        last = self.CHUNK - 1
+        last = self._K - 1
         self._last0 = self._P[last].copy()
         self._phase0 = self._PH[last].copy()
 
@@ -393,7 +418,8 @@ class PathSet:
     def start_row(self, cs: CoordSystem, mv: PathMove, v0: float, events: Events) -> None:
         """The move starts at this update: own clock 0, contribution 0, speed v0."""
         self.changed()
-        mv.profile = plan_move(mv.segment.length, mv.limits, v0)
+        mv.use_profile(plan_move(mv.segment.length, mv.limits, v0))
+        mv.pack_segment()
         mv.owner = mv.handle
         mv.n, mv.s0, mv.s, mv.v, mv.a = 0, 0.0, 0.0, v0, 0.0
         last = np.zeros(3)
@@ -407,9 +433,9 @@ class PathSet:
         self._rows.append(mv)
         axis = cs.axes[0]
         events.append((mv.handle, EventKind.IN_PROCESS, axis))
-        mv.phase = 0 if mv.profile.duration > 0 and v0 < mv.limits.speed else 2
+        mv.phase = 0 if mv.duration > 0 and v0 < mv.limits.speed else 2
         events.append((mv.handle, _PHASES[mv.phase], axis))
-        if mv.segment.length <= _EPS and mv.profile.duration <= 0.0:
+        if mv.segment.length <= _EPS and mv.duration <= 0.0:
             self._finish(cs, mv, events)
 
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -502,7 +528,7 @@ class PathSet:
             r.owner = handle if handle else -cs_id - 1
             # a trapezoidal move stops with a trapezoidal ramp; S-curve with the stop's jerk
             j = jerk if math.isfinite(r.limits.decel_jerk) else math.inf
-            r.profile = plan_stop(r.v, Limits(0.0, decel, decel, j, j))
+            r.use_profile(plan_stop(r.v, Limits(0.0, decel, decel, j, j)))
             r.s0, r.n = r.s, 0
             if r.settling:
                 self._settling -= 1

@@ -113,22 +113,42 @@ def _run_program(moves: int, seconds: float) -> tuple[float, float]:
     return seconds, wall
 
 
+def _idle_update_seconds(n_axes: int, updates: int = 5000) -> float:
+    """Per-update cost of a group whose axes do nothing (the fixed cost of the planner)."""
+    g = MotionGroup(CUP)
+    for i in range(n_axes):
+        g.add_axis(f"a{i}")
+    for _ in range(100):
+        g.update()
+    t0 = time.perf_counter()
+    for _ in range(updates):
+        g.update()
+    return (time.perf_counter() - t0) / updates
+
+
 def main() -> None:
+    idle3 = _idle_update_seconds(3)
+    idle48 = _idle_update_seconds(48)
+    print(
+        f"idle group update (no motion): 3 axes {idle3 * 1e6:.1f} us, 48 axes {idle48 * 1e6:.1f} us"
+    )
     sim, wall, done = _run_core(1, MOVES)
     assert done == MOVES
+    per = wall / (sim / CUP)
     print(f"core, 1 system, {MOVES} moves: {sim:.1f} s simulated in {wall:.2f} s")
-    print(f"  {sim / wall:.0f}x real time ({wall / (sim / CUP) * 1e6:.1f} us per update)")
+    print(f"  {sim / wall:.0f}x real time ({per * 1e6:.1f} us per update, of which the")
+    print(f"  path moves add {(per - idle3) * 1e6:.1f} us to the idle group's {idle3 * 1e6:.1f})")
     sim16, wall16, done16 = _run_core(16, MOVES // 10)
     assert done16 == 16 * (MOVES // 10)
+    per16 = wall16 / (sim16 / CUP)
     print(f"core, 16 systems x {MOVES // 10} moves: {sim16:.1f} s simulated in {wall16:.2f} s")
-    print(f"  {sim16 / wall16:.0f}x real time ({wall16 / (sim16 / CUP) * 1e6:.1f} us per update)")
-    print(f"  16 systems cost {wall16 / sim16 / (wall / sim):.1f}x one system per update")
+    print(f"  {sim16 / wall16:.0f}x real time ({per16 * 1e6:.1f} us per update; the paths add")
+    print(f"  {(per16 - idle48) * 1e6:.1f} us to the idle 48-axis group's {idle48 * 1e6:.1f})")
     # the program: the first PROGRAM_MOVES moves of the path (the whole run scans too)
     seconds = math.ceil(sim * PROGRAM_MOVES / MOVES) + 1.0
     psim, pwall = _run_program(PROGRAM_MOVES, seconds)
     print(f"program, {PROGRAM_MOVES} moves (logixst run, 1 ms scans and coarse update):")
-    print(f"  {psim:.0f} s simulated in {pwall:.2f} s")
-    print(f"  {psim / pwall:.1f}x real time")
+    print(f"  {psim:.0f} s simulated in {pwall:.2f} s: {psim / pwall:.1f}x real time")
 
 
 if __name__ == "__main__":
