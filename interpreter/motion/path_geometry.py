@@ -89,9 +89,12 @@ class GeometryError:
     detail: str
 
 
-@dataclass(slots=True, frozen=True)
+@dataclass(slots=True, frozen=True, eq=False)
 class Segment:
-    """One path piece: a line (radius 0, sweep 0) or a circular arc, by arc length."""
+    """One path piece: a line (radius 0, sweep 0) or a circular arc, by arc length.
+
+    Compared by identity (eq=False): its fields are numpy arrays.
+    """
 
     start: np.ndarray  # (ndim,)
     end: np.ndarray  # (ndim,) where the motion ends (the start again for a full circle)
@@ -143,6 +146,20 @@ class Segment:
         p = self.start + f[:, None] * a + g[:, None] * b
         p[s >= self.length] = self.end
         return p
+
+    def tolerance_point(self, distance: float) -> float:
+        """Arc length from which the straight distance to the end stays within `distance`.
+
+        The Command Tolerance point: on an arc the remaining angle phi is at most
+        2 asin(d / 2r) away (chord 2r sin(phi/2) <= d); a long arc or a full circle may be
+        within d at its start too, but leaves it again, so this is the last entry.
+        """
+        d = max(float(distance), 0.0)
+        if not self.is_arc:
+            return max(self.length - d, 0.0)
+        if d >= 2.0 * self.radius:
+            return 0.0
+        return max(self.length - 2.0 * self.radius * math.asin(d / (2.0 * self.radius)), 0.0)
 
     def tangent(self, s: np.ndarray) -> np.ndarray:
         """Unit tangents (len(s), ndim) in the direction of travel at arc lengths s."""
@@ -242,6 +259,9 @@ def circle(
     Center Incremental (relative to the start when move_type is 1 Incremental, and always
     for Center Incremental), a number for Radius. With a Full direction the segment is one
     whole turn back to the start; `end` then only helps define the circle.
+
+    Operands the runtime rejects with ERR 13 first (ndim not 2 or 3, circle type or
+    direction out of range, arrays shorter than ndim) raise ValueError here.
     """
     if ndim not in (2, 3):
         raise ValueError(f"a circle needs 2 or 3 primary axes, not {ndim}")
@@ -297,12 +317,10 @@ def _via_circle(
             CircleError.CIRCULAR_COLLINEARITY, "start, via and end points are on one line"
         )
     n /= nn
-    # circumcentre: equidistant from p0, via, p1 and in their plane
-    # c = p0 + (|a|^2 (b x n') ... ) written with n' = a x b (unnormalised):
-    axb = np.cross(a, b)
-    c = p0 + (float(a @ a) * np.cross(b, axb) + float(b @ b) * np.cross(axb, a)) / (
-        2.0 * float(axb @ axb)
-    )
+    # circumcentre (equidistant from p0, via, p1, in their plane), with w = a x b:
+    # c = p0 + (|a|^2 (b x w) + |b|^2 (w x a)) / (2 |w|^2)
+    w = np.cross(a, b)
+    c = p0 + (float(a @ a) * np.cross(b, w) + float(b @ b) * np.cross(w, a)) / (2.0 * float(w @ w))
     r = float(np.linalg.norm(p0 - c))
     if r < MIN_RADIUS:
         return GeometryError(CircleError.CIRCULAR_SMALL_R, f"radius {r:g} is below 0.001")
@@ -473,6 +491,18 @@ class SegmentTable:
         done = s >= length
         p[done] = self.end[rows[done]]
         return p
+
+    def tolerance_points(self, rows: np.ndarray, distance: np.ndarray) -> np.ndarray:
+        """`Segment.tolerance_point` of many rows at once (distance per row or one value)."""
+        rows = np.asarray(rows, dtype=np.intp)
+        d = np.maximum(np.broadcast_to(np.asarray(distance, dtype=float), rows.shape), 0.0)
+        length = self.length[rows]
+        arc = self.arc[rows]
+        # radius of an arc row is |A| = |start - centre|; lines use the straight remainder
+        r = np.where(arc, np.linalg.norm(self.a[rows], axis=1), 1.0)
+        ratio = np.minimum(d / (2.0 * r), 1.0)
+        on_arc = np.where(ratio >= 1.0, length, 2.0 * r * np.arcsin(ratio))
+        return np.maximum(length - np.where(arc, on_arc, d), 0.0)
 
     def tangents(self, rows: np.ndarray, s: np.ndarray) -> np.ndarray:
         """Unit tangents (m, 3) of segments `rows` at arc lengths `s`."""
