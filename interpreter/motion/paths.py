@@ -426,7 +426,7 @@ class PathSet:
         last[: cs.ndim] = mv.segment.start
         mv.last = last
         mv.blend_s = _blend_point(mv)
-        mv.tol_s = mv.segment.length - cs.command_tolerance
+        mv.tol_s = mv.segment.tolerance_point(cs.command_tolerance)
         cs.rows.append(mv)
         cs.lead = mv
         cs.cmd_tol = cs.act_tol = False
@@ -589,7 +589,8 @@ def _blend_point(mv: PathMove) -> float:
     """Path parameter from which the queued move may start (inf: only after the end)."""
     length = mv.segment.length
     if mv.termination in (Termination.COMMAND_TOLERANCE, Termination.COMMAND_TOLERANCE_PROGRAMMED):
-        return max(length - max(mv.tolerance, 0.0), 0.0)
+        # the tolerance is a distance to the end point (a chord on an arc)
+        return mv.segment.tolerance_point(mv.tolerance)
     if mv.termination in _AT_DECEL_POINT:
         pr = mv.profile
         assert pr is not None
