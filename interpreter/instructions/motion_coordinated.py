@@ -44,6 +44,8 @@ from .registry import implements, prescan
 _CS = struct_type("COORDINATE_SYSTEM")
 _IX = _CS.index
 _WORDS = packed_words("COORDINATE_SYSTEM")
+_CMD, _ACT = _IX["COMMANDPOSITION"], _IX["ACTUALPOSITION"]
+_VCV, _VAV = _IX["VECTORCOMMANDVELOCITY"], _IX["VECTORACTUALVELOCITY"]
 _STATUS_MEMBERS = (
     "MotionStatus", "AccelStatus", "DecelStatus", "ActualPosToleranceStatus",
     "CommandPosToleranceStatus", "StoppingStatus", "MoveStatus", "MoveTransitionStatus",
@@ -72,6 +74,8 @@ class System:
     group: Group
     axes: list[Axis]
     index: int  # in the core's PathSet
+    index_of_axes: tuple[int, ...] = ()  # the axes' indices in the group
+    seen: int = -1  # PathSet.version whose status the tag shows
 
     def get(self, name: str) -> float:
         return float(self.value[_IX[name.upper()]])
@@ -109,7 +113,7 @@ def system(rt: MotionRuntime, cs: list) -> System | MotionError:
         return MotionError.PARAMETER_OUT_OF_RANGE
     g = found[0].group
     idx = g.core.add_coordinate_system([ax.index for ax in found])
-    sysm = System(cs, g, found, idx)
+    sysm = System(cs, g, found, idx, tuple(ax.index for ax in found))
     cs[_IX["DIMENSION"]] = len(found)
     rt.attached[id(cs)] = sysm
     g.observers.append(lambda grp: _write_status(sysm))
@@ -118,23 +122,25 @@ def system(rt: MotionRuntime, cs: list) -> System | MotionError:
 
 
 def _write_status(s: System) -> None:
-    """Status members, positions and vector velocities of the system into its tag."""
+    """Status members, positions and vector velocities of the system into its tag (the
+    status only when the path set reports a change)."""
     core = s.group.core
     v = s.value
-    for name, on in core.paths.system_status(s.index).items():
-        v[_IX[name.upper()]] = 1 if on else 0
-    for word, members in _WORDS:
-        pack(v, word, members)
-    idx = [ax.index for ax in s.axes]
-    for member, arr in (
-        ("COMMANDPOSITION", core.command_position),
-        ("ACTUALPOSITION", core.actual_position),
-    ):
-        out = v[_IX[member]]
-        for k, i in enumerate(idx):
-            out[k] = f32(float(arr[i]))
-    v[_IX["VECTORCOMMANDVELOCITY"]] = f32(float(np.linalg.norm(core.command_velocity[idx])))
-    v[_IX["VECTORACTUALVELOCITY"]] = f32(float(np.linalg.norm(core.actual_velocity[idx])))
+    paths = core.paths
+    if s.seen != paths.version:
+        s.seen = paths.version
+        for name, on in paths.system_status(s.index).items():
+            v[_IX[name.upper()]] = 1 if on else 0
+        for word, members in _WORDS:
+            pack(v, word, members)
+    cmd, act = v[_CMD], v[_ACT]
+    cp, ap = core.command_position, core.actual_position
+    cv, av = core.command_velocity, core.actual_velocity
+    for k, i in enumerate(s.index_of_axes):
+        cmd[k] = f32(float(cp[i]))
+        act[k] = f32(float(ap[i]))
+    v[_VCV] = f32(math.hypot(*(float(cv[i]) for i in s.index_of_axes)))
+    v[_VAV] = f32(math.hypot(*(float(av[i]) for i in s.index_of_axes)))
 
 
 def _start(
@@ -264,6 +270,7 @@ def _queue(
     set_bits(ctl, DN=1, IP=1)
     # the queue bits show at once: a program tests MovePendingQueueFullStatus before it
     # queues the next move in the same scan
+    s.seen = -1
     _write_status(s)
 
 

@@ -157,6 +157,8 @@ class MotionGroup:
             self.paths,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
+        # the sets' status dicts of the latest update and their merge (kept while unchanged)
+        self._owned: tuple[list[dict[str, np.ndarray]], dict[str, np.ndarray]] | None = None
 
     @property
     def _gens(self) -> list[ProfileGen]:
@@ -530,12 +532,18 @@ class MotionGroup:
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        owned: dict[str, np.ndarray] = {}
-        for ps in self._sets:  # a member two kinds set (CoordinatedMotionStatus) is their OR
-            for name, arr in ps.status(n).items():
-                prev = owned.get(name)
-                owned[name] = arr if prev is None else prev | arr
-        st.update(owned)
+        parts = [ps.status(n) for ps in self._sets]
+        cached = self._owned
+        if cached is None or any(p is not q for p, q in zip(parts, cached[0], strict=True)):
+            # the sets hand out the same dict while their status is unchanged (its arrays
+            # read-only); a member two kinds set (CoordinatedMotionStatus) is their OR
+            owned: dict[str, np.ndarray] = {}
+            for part in parts:
+                for name, arr in part.items():
+                    prev = owned.get(name)
+                    owned[name] = arr if prev is None else prev | arr
+            cached = self._owned = (parts, owned)
+        st.update(cached[1])
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()

@@ -160,6 +160,7 @@ class PathSet:
         self._done: list[tuple[PathMove, bool]] = []
         self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
         self._check = False  # end_update must look at the systems (a queue, a settling move)
+        self.version = 0  # counts changes of what system_status reports (readers cache on it)
         self._settling = 0  # rows waiting for the actual position (termination 0)
         self._k = -1  # row of the chunk handed out by the latest step
         self._K = 0  # rows in the chunk (0: none)
@@ -194,6 +195,7 @@ class PathSet:
         self._dirty = True
         self._check = True
         self._status_cache = None
+        self.version += 1
 
     def _rebuild(self) -> None:
         """The struct-of-arrays form of the rows, from what each row packed once (its
@@ -338,6 +340,7 @@ class PathSet:
 
     def _events(self, k: int, events: Events) -> None:
         """Phase changes, ends, blend points and command tolerance reached at update k."""
+        self.version += 1
         done: list[tuple[PathMove, bool]] = []
         for i in np.flatnonzero(self._changed[k]).tolist():
             r = self._rows[i]
