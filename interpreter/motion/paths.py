@@ -375,7 +375,7 @@ class PathSet:
                 cs = self.systems[r.system]
                 if cs.lead is r and cs.queue and r.s >= r.blend_s - _EPS:
                     self._start_next(cs, events)  # blend: r keeps running underneath
-                if not ended or r not in cs.rows:
+                if not ended or r not in cs.rows or r.settling:
                     continue
                 if r.termination == Termination.ACTUAL_TOLERANCE and r.owner == r.handle:
                     r.settling = True

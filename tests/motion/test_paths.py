@@ -137,6 +137,7 @@ def test_actual_tolerance_waits_for_the_drive() -> None:
     assert expected is not None and expected > 0.6 + 1e-9  # the drive lags the command
     assert done == pytest.approx(expected)
     assert g.paths.system_status(cs)["ActualPosToleranceStatus"] is True
+    assert g.paths._settling == 0  # nothing left waiting: the set is idle again
 
 
 def test_servo_off_ends_the_path_and_the_queue() -> None:

@@ -52,10 +52,11 @@ def mclm(
     merge: str = "disabled",
     ct: float = 0.0,
     cs: str = "XY",
+    ms: str = "programmed",
 ) -> str:
     return (
         f"MCLM({cs}, {ctl}, {mtype}, {pos}, {v}, {su}, {a}, {au}, {d}, {au}, {shape}, {ja}, {jd}, "
-        f"{ju}, {tt}, {merge}, programmed, {ct}, 0, none, 0, 0);"
+        f"{ju}, {tt}, {merge}, {ms}, {ct}, 0, none, 0, 0);"
     )
 
 
@@ -417,3 +418,15 @@ def test_event_distance_gives_the_time_to_the_point(mp) -> None:
     tr = mp.trace(prog(decls, once(stmt)), ["cd[0]", "cd[1]"], 5)
     assert tr.at(0.004, "cd[0]") == pytest.approx(4.55, abs=1e-6)
     assert tr.at(0.004, "cd[1]") == pytest.approx(4.95, abs=1e-6)
+
+
+@pytest.mark.parametrize(("ms", "speed"), [("programmed", 20.0), ("current", 10.0)])
+def test_merge_speed_programmed_or_current(mp, ms: str, speed: float) -> None:
+    # cruising at 10 towards p2, a merging move along the same line to p3 at 20 units/s:
+    # Programmed speeds up to 20, Current keeps the 10 the system has
+    body = once(mclm("c1", "p2")) + (
+        f"IF k = 1000 THEN {mclm('c2', 'p3', v=20.0, merge='coordinatedmotion', ms=ms)} END_IF;"
+    )
+    tr = mp.trace(prog("", body), ["XY.VectorCommandVelocity", "c1.IP", "c2.IP"], 2500)
+    assert tr.at(2.0, "XY.VectorCommandVelocity") == pytest.approx(speed, abs=1e-4)
+    assert [tr.at(2.0, n) for n in ("c1.IP", "c2.IP")] == [0, 1]
