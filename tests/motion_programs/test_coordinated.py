@@ -430,3 +430,36 @@ def test_merge_speed_programmed_or_current(mp, ms: str, speed: float) -> None:
     tr = mp.trace(prog("", body), ["XY.VectorCommandVelocity", "c1.IP", "c2.IP"], 2500)
     assert tr.at(2.0, "XY.VectorCommandVelocity") == pytest.approx(speed, abs=1e-4)
     assert [tr.at(2.0, n) for n in ("c1.IP", "c2.IP")] == [0, 1]
+
+
+LADDER = """VAR
+  X, Y : AXIS_VIRTUAL;
+  XY : COORDINATE_SYSTEM := (Axes := [X, Y], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  arc : MOTION_INSTRUCTION;
+  inc, ctr : REAL[2] := [20.0, 0.0];
+  k : DINT;
+END_VAR
+EQU(k,0)MOV(10.0,ctr[0])MOV(0.0,ctr[1]);
+EQU(k,1)MCCM(XY,arc,Incremental,inc[0],Center,ctr[0],CW,10,Units per sec,100,Units per sec2,100,Units per sec2,Trapezoidal,100.0,100.0,% of Time,No Settle,Disabled,Programmed,0,0,None,0,0);
+ADD(k,1,k);
+"""
+
+
+def test_ladder_mccm_incremental_half_circle(mp) -> None:
+    # executed in scan 1 (start at the update 0.002): from (0, 0) by (20, 0) about the
+    # centre (0, 0) + (10, 0), clockwise: a half circle over the top through (10, 10),
+    # L = 10 pi, T = pi + 0.1 s; halfway (T/2 after the start) it is at the top
+    tr = mp.trace(
+        LADDER, ["X.CommandPosition", "Y.CommandPosition", "arc.PC", "arc.ER"], 3400,
+        name="prog.rll",
+    )  # fmt: skip
+    assert tr.col("arc.ER")[-1] == 0
+    assert_completes(tr, "arc", T0 + math.pi + 0.1)
+    top = T0 + (math.pi + 0.1) / 2.0
+    row = round(top / CUP) * CUP
+    assert tr.at(row, "X.CommandPosition") == pytest.approx(10.0, abs=0.02)
+    assert tr.at(row, "Y.CommandPosition") == pytest.approx(10.0, abs=1e-3)
+    for x, y in zip(tr.col("X.CommandPosition"), tr.col("Y.CommandPosition"), strict=True):
+        assert math.hypot(x - 10.0, y) == pytest.approx(10.0, abs=F32)
+        assert y >= -F32
+    assert (tr.col("X.CommandPosition")[-1], tr.col("Y.CommandPosition")[-1]) == (20.0, 0.0)
