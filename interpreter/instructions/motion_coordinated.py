@@ -28,6 +28,7 @@ from ..vm.refs import ArrayRef
 from ..vm.values import f32
 from .motion_common import (
     PER_MASTER_UNIT,
+    PERCENT_OF_TIME,
     Dynamics,
     begin,
     clear_on_prescan,
@@ -176,6 +177,7 @@ class _Common:
     tolerance: float
     merge: int
     merge_current: bool
+    decel_jerk_percent: float | None  # S-curve decel jerk in % of Time (merges rescale it)
 
 
 def _common(
@@ -229,7 +231,8 @@ def _common(
     )
     cs = s.group.core.paths.systems[s.index]
     tol = ct if tt == Termination.COMMAND_TOLERANCE_PROGRAMMED else cs.command_tolerance
-    return _Common(lim, tt, tol, mm, ms == 1)
+    pct = real(decel_jerk) if shape == 1 and whole(jerk_units) == PERCENT_OF_TIME else None
+    return _Common(lim, tt, tol, mm, ms == 1, pct)
 
 
 def _queue(
@@ -250,7 +253,7 @@ def _queue(
     core = s.group.core
     r = core.start_path(
         s.index, segment, common.limits, common.termination, common.tolerance, common.merge,
-        common.merge_current, rebuild,
+        common.merge_current, rebuild, common.decel_jerk_percent,
     )  # fmt: skip
     if failed(rt, ctl, r):
         return

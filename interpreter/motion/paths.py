@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import IntEnum
 from typing import TYPE_CHECKING
 
@@ -648,11 +648,14 @@ def start_path(
     merge: int,
     merge_current: bool,
     rebuild: Build | None = None,
+    decel_jerk_percent: float | None = None,
 ) -> StartResult:
     """MCLM/MCCM with a validated segment from path_start_point. Merge Disabled queues
     behind the active move (one deep, else error 43); a merge ends the running and queued
     coordinated moves (All: also the axes' single-axis motion) at the next update and
-    continues from there with the speed along the new path (Current: at that speed)."""
+    continues from there with the speed along the new path (Current: at that speed).
+    decel_jerk_percent: the S-curve decel jerk was given in % of Time; a merge that starts
+    at speed V0 takes it from max(V, |V0 - V|) instead of V (SPEC 9.28)."""
     paths = group.paths
     cs = paths.systems[cs_id]
     h = group.new_handle()
@@ -682,14 +685,14 @@ def start_path(
         mv.segment = seg
         tan = seg.tangent(np.array([0.0]))[0] if seg.length > _EPS else np.zeros(len(axes))
         v0 = max(float(vel @ tan), 0.0)
+        lim = limits
         if merge_current and v0 > _EPS:
-            mv.limits = Limits(
-                float(np.linalg.norm(vel)),
-                limits.accel,
-                limits.decel,
-                limits.accel_jerk,
-                limits.decel_jerk,
-            )
+            lim = replace(lim, speed=float(np.linalg.norm(vel)))
+        if decel_jerk_percent is not None and math.isfinite(lim.decel_jerk) and lim.speed > 0:
+            ref = max(lim.speed, abs(v0 - lim.speed))
+            jd = lim.decel * lim.decel / ref * (200.0 / decel_jerk_percent - 1.0)
+            lim = replace(lim, decel_jerk=jd if jd > 0.0 else math.inf)
+        mv.limits = lim
         paths.start_row(cs, mv, v0, ev)
 
     group.after_update(apply)

@@ -463,3 +463,20 @@ def test_ladder_mccm_incremental_half_circle(mp) -> None:
         assert math.hypot(x - 10.0, y) == pytest.approx(10.0, abs=F32)
         assert y >= -F32
     assert (tr.col("X.CommandPosition")[-1], tr.col("Y.CommandPosition")[-1]) == (20.0, 0.0)
+
+
+def test_merge_decel_jerk_in_percent_of_time_uses_the_speed_change(mp) -> None:
+    # at 30 units/s a merging S-curve move at V = 10 with 100 % of Time: the decel jerk comes
+    # from max(V, |V0 - V|) = 20 (SPEC 9.28): J = A^2/20 = 500 (not A^2/V = 1000). From 30 to
+    # 10 (dv 20 = A^2/J): jerk up for A/J = 0.2 s (dv 10), jerk down for 0.2 s: at 10 after
+    # 0.4 s; 0.3 s in, dv = 10 + (A 0.1 - J 0.1^2 / 2) = 17.5, so the speed is 12.5
+    body = once(mclm("c1", "p3", v=30.0, a=1000.0, d=1000.0)) + (
+        "IF k = 1000 THEN "
+        + mclm("c2", "p3", v=10.0, shape="s-curve", merge="coordinatedmotion")
+        + " END_IF;"
+    )
+    tr = mp.trace(prog("", body), ["XY.VectorCommandVelocity", "c2.ER"], 1600)
+    assert tr.at(0.9, "XY.VectorCommandVelocity") == pytest.approx(30.0, abs=1e-4)
+    t_merge = 1.002
+    assert tr.at(t_merge + 0.3, "XY.VectorCommandVelocity") == pytest.approx(12.5, abs=1e-3)
+    assert tr.at(t_merge + 0.4, "XY.VectorCommandVelocity") == pytest.approx(10.0, abs=1e-4)
