@@ -46,6 +46,7 @@ _CS = struct_type("COORDINATE_SYSTEM")
 _IX = _CS.index
 _WORDS = packed_words("COORDINATE_SYSTEM")
 _CMD, _ACT = _IX["COMMANDPOSITION"], _IX["ACTUALPOSITION"]
+_READY = _IX["READYSTATUS"]
 _VCV, _VAV = _IX["VECTORCOMMANDVELOCITY"], _IX["VECTORACTUALVELOCITY"]
 _STATUS_MEMBERS = (
     "MotionStatus", "AccelStatus", "DecelStatus", "ActualPosToleranceStatus",
@@ -128,10 +129,14 @@ def _write_status(s: System) -> None:
     core = s.group.core
     v = s.value
     paths = core.paths
-    if s.seen != paths.version:
+    # ReadyStatus: every member axis can move (servo on, not shut down; virtual axes are)
+    on, down = core.servo_on, core.shutdown
+    ready = 1 if all(on[i] and not down[i] for i in s.index_of_axes) else 0
+    if s.seen != paths.version or v[_READY] != ready:
         s.seen = paths.version
-        for name, on in paths.system_status(s.index).items():
-            v[_IX[name.upper()]] = 1 if on else 0
+        v[_READY] = ready
+        for name, bit in paths.system_status(s.index).items():
+            v[_IX[name.upper()]] = 1 if bit else 0
         for word, members in _WORDS:
             pack(v, word, members)
     cmd, act = v[_CMD], v[_ACT]

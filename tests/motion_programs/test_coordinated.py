@@ -100,10 +100,14 @@ def test_trapezoid_line_duration_end_point_and_bits(mp) -> None:
             "X.CommandPosition", "Y.CommandPosition", "XY.VectorCommandVelocity", "c1.DN",
             "c1.IP", "c1.AC", "c1.PC", "c1.ACCEL", "c1.DECEL", "XY.MoveStatus",
             "XY.AccelStatus", "XY.DecelStatus", "XY.MotionStatus", "X.CoordinatedMotionStatus",
-            "XY.CommandPosToleranceStatus", "XY.CommandPosition[0]",
+            "XY.CommandPosToleranceStatus", "XY.CommandPosition[0]", "XY.ReadyStatus",
+            "XY.CoordinateSystemStatus",
         ],
         scans=5300,
     )  # fmt: skip
+    # virtual axes are always ready; ReadyStatus is bit 1, MotionStatus bit 2 of the word
+    assert tr.at(0.0, "XY.ReadyStatus") == 1
+    assert tr.at(0.05, "XY.CoordinateSystemStatus") == 2 + 4
     assert_completes(tr, "c1", T0 + 5.1)
     assert tr.col("X.CommandPosition")[-1] == 30.0
     assert tr.col("Y.CommandPosition")[-1] == 40.0
