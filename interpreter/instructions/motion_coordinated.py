@@ -100,8 +100,8 @@ def _limit(x: float) -> float:
 
 def system(rt: MotionRuntime, cs: list) -> System | MotionError:
     """The system a COORDINATE_SYSTEM tag names, bound to its group's core on first use;
-    11 when an axis is not a configured axis, 13 when the axes are not 2 or 3 primary axes
-    of one motion group."""
+    11 when an axis is not a configured axis, 13 when the axes are not 2 or 3 different
+    axes of one motion group."""
     bound = rt.attached.get(id(cs))
     if isinstance(bound, System):
         return bound
@@ -111,7 +111,11 @@ def system(rt: MotionRuntime, cs: list) -> System | MotionError:
     if any(ax is None for ax in axes):
         return MotionError.AXIS_NOT_CONFIGURED
     found = [ax for ax in axes if ax is not None]
-    if len(found) not in (2, 3) or len({id(ax.group) for ax in found}) != 1:
+    if (
+        len(found) not in (2, 3)
+        or len({id(ax) for ax in found}) != len(found)  # an axis named twice
+        or len({id(ax.group) for ax in found}) != 1
+    ):
         return MotionError.PARAMETER_OUT_OF_RANGE
     g = found[0].group
     idx = g.core.add_coordinate_system([ax.index for ax in found])

@@ -484,3 +484,9 @@ def test_merge_decel_jerk_in_percent_of_time_uses_the_speed_change(mp) -> None:
     t_merge = 1.002
     assert tr.at(t_merge + 0.3, "XY.VectorCommandVelocity") == pytest.approx(12.5, abs=1e-3)
     assert tr.at(t_merge + 0.4, "XY.VectorCommandVelocity") == pytest.approx(10.0, abs=1e-4)
+
+
+def test_a_system_naming_an_axis_twice_is_error_13(mp) -> None:
+    decls = "  XX : COORDINATE_SYSTEM := (Axes := [X, X]);\n"
+    tr = mp.trace(prog(decls, once(mclm("c1", "p1", cs="XX"))), ["c1.ER", "c1.ERR", "c1.EXERR"], 2)
+    assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.EXERR")] == [1, 13, 0]
