@@ -3,8 +3,9 @@
 A path move runs the closed-form move profile of profiles.py (the one MAM uses) on its
 path parameter s, the arc length along its Segment (path_geometry.py); the axes follow
 p(s). Every path row of the group (one per running move, across all coordinate systems)
-is advanced in one numpy step: the profiles' segment tables are padded into one matrix
-and the geometry is one SegmentTable evaluation.
+is evaluated together: the profiles' segment tables are padded into one matrix, the
+geometry is one SegmentTable, and rows x the next updates go through one numpy pass
+(paths are time driven, so nothing but a start, blend, end or stop changes them).
 
 A coordinate system keeps one move queued behind the active one (SPEC 9.28). Blending
 (termination types 2, 3, 6 and, here, 4 and 5) starts the queued move while the active one
