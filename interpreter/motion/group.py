@@ -51,13 +51,13 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
-from interpreter.motion.paths import (
-    PathSet,
+from interpreter.motion.path_moves import (
     add_coordinate_system,
     path_start_point,
     start_path,
     stop_path,
 )
+from interpreter.motion.paths import PathSet
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam

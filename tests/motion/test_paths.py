@@ -14,7 +14,7 @@ import pytest
 
 from interpreter.motion import AxisKind, EventKind, MotionGroup
 from interpreter.motion.path_geometry import Segment, circle, line
-from interpreter.motion.paths import path_trajectory
+from interpreter.motion.path_moves import path_trajectory
 from interpreter.motion.profiles import Limits, plan_move
 
 CUP = 0.001
