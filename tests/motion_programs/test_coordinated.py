@@ -239,10 +239,12 @@ def test_command_tolerance_blend_keeps_the_vector_speed_up(mp) -> None:
     assert v_ct - 100.0 * CUP - 1e-4 <= low <= v_ct + 1e-4
 
 
-def test_no_decel_blends_from_the_decel_point(mp) -> None:
+@pytest.mark.parametrize("tt", [3, 4, 5])
+def test_no_decel_blends_from_the_decel_point(mp, tt: int) -> None:
     # 3 (No Decel) starts the next move where the first starts to decelerate: with equal
-    # accel and decel the two ramps add up to the cruise speed, 10 units/s throughout
-    low = min(_vector_speed_at_junction(mp, 3))
+    # accel and decel the two ramps add up to the cruise speed, 10 units/s throughout;
+    # 4 and 5 (Follow Contour) blend the same way here (decision 0124)
+    low = min(_vector_speed_at_junction(mp, tt))
     assert 10.0 - 100.0 * CUP - 1e-4 <= low <= 10.0 + 1e-4
 
 
