@@ -157,6 +157,7 @@ class MotionGroup:
             self.paths,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
+        self._shifted = False  # shift holds a nonzero entry
         # the sets' status dicts of the latest update and their merge (kept while unchanged)
         self._owned: tuple[list[dict[str, np.ndarray]], dict[str, np.ndarray]] | None = None
 
@@ -407,6 +408,7 @@ class MotionGroup:
         self.command_position[axis] += delta
         self.actual_position[axis] += delta
         self.shift[axis] += delta
+        self._shifted = True
         for ps in self._sets:
             ps.shift_master(axis, delta)
 
@@ -472,7 +474,9 @@ class MotionGroup:
         """Advance every axis one coarse update; returns the events of this update."""
         ev: list[tuple[int, EventKind, int]] = []
         self.time = self.updates * self.cup  # updates happen at 0, cup, 2 cup, ...
-        self.shift[:] = 0.0
+        if self._shifted:  # only an update that applies a redefinition shifts
+            self.shift[:] = 0.0
+            self._shifted = False
         pre, self._pre = self._pre, []
         for f in pre:
             f(ev)
@@ -529,9 +533,10 @@ class MotionGroup:
         n = len(self.axes)
         st = self.status
         v, a = self.command_velocity, self.command_acceleration
-        moving = np.abs(v) > _VEL_EPS
-        st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
-        st["DecelStatus"] = v * a < -_VEL_EPS
+        va = v * a
+        speed = np.abs(v)
+        st["AccelStatus"] = (va > _VEL_EPS) | ((speed <= _VEL_EPS) & (np.abs(a) > _VEL_EPS))
+        st["DecelStatus"] = va < -_VEL_EPS
         parts = [ps.status(n) for ps in self._sets]
         cached = self._owned
         if cached is None or any(p is not q for p, q in zip(parts, cached[0], strict=True)):
@@ -544,6 +549,6 @@ class MotionGroup:
                     owned[name] = arr if prev is None else prev | arr
             cached = self._owned = (parts, owned)
         st.update(cached[1])
-        st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
+        st["MaximumSpeedExceeded"] = speed > np.array([c.max_speed for c in self.axes])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()
