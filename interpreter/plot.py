@@ -122,15 +122,7 @@ def write_plot(path: Path, data: PlotData) -> None:
     if time_axes:
         time_axes[-1].set_xlabel("time [s]")
     if paths:
-        ax = axes[-1, 0]
-        for name, (sx, sy, *_) in paths:
-            ax.plot(sx.values, sy.values, label=f"{name}: {sy.name} over {sx.name}", linewidth=1.4)
-        ax.set_xlabel("X [units]")
-        ax.set_ylabel("Y [units]")
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.set_title("coordinate system path (X-Y)", fontsize="medium")
-        ax.legend(loc="best", fontsize="small")
-        ax.grid(True, alpha=0.3)
+        _paths(fig, axes[-1, 0], paths)
     if not units and not paths:
         axes[0, 0].text(0.5, 0.5, "no numeric signals to plot", ha="center", va="center")
     fig.suptitle(data.title)
@@ -139,6 +131,33 @@ def write_plot(path: Path, data: PlotData) -> None:
         fig.savefig(path, dpi=110)
     finally:
         plt.close(fig)
+
+
+_PLANES = ((0, 1, "X", "Y"), (0, 2, "X", "Z"), (1, 2, "Y", "Z"))
+
+
+def _paths(fig, slot, paths: list[tuple[str, list[Series]]]) -> None:  # type: ignore[no-untyped-def]
+    """The path of each coordinate system in its plane: X-Y for 2D systems, the X-Y, X-Z
+    and Y-Z views side by side when a system has three axes."""
+    planes = _PLANES if any(len(ss) >= 3 for _, ss in paths) else _PLANES[:1]
+    if len(planes) > 1:
+        spec = slot.get_subplotspec().subgridspec(1, len(planes), wspace=0.35)
+        slot.remove()
+        views = [fig.add_subplot(spec[0, k]) for k in range(len(planes))]
+    else:
+        views = [slot]
+    for ax, (i, j, hx, hy) in zip(views, planes, strict=True):
+        for name, ss in paths:
+            if len(ss) > j:
+                label = f"{name}: {ss[j].name} over {ss[i].name}"
+                ax.plot(ss[i].values, ss[j].values, label=label, linewidth=1.4)
+        ax.set_xlabel(f"{hx} [units]")
+        ax.set_ylabel(f"{hy} [units]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(f"coordinate system path ({hx}-{hy})", fontsize="medium")
+        if len(planes) == 1:
+            ax.legend(loc="best", fontsize="small")
+        ax.grid(True, alpha=0.3)
 
 
 def _bits(ax, t: list[float], series: list[Series]) -> None:  # type: ignore[no-untyped-def]

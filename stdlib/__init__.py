@@ -14,7 +14,18 @@ from pathlib import Path
 _ROOT = Path(__file__).parent
 
 OPERAND_FORMATS = frozenset(
-    {"tag", "immediate", "value", "array", "memory", "routine", "label", "task", "object"}
+    {
+        "tag",
+        "immediate",
+        "value",
+        "array",
+        "array_or_value",
+        "memory",
+        "routine",
+        "label",
+        "task",
+        "object",
+    }  # fmt: skip
 )
 OPERAND_DIRS = frozenset({"in", "out", "inout"})
 

@@ -248,7 +248,10 @@ class RoutineCompiler:
                     dims = base_t.dims if isinstance(base_t, ArrayType) else ()
                     self.emit(Op.AREF, (t, dims, True))
                 continue
-            if op.format == "array":
+            if op.format == "array" or (
+                op.format == "array_or_value"
+                and (isinstance(t, ArrayType) or isinstance(e, n.Index))
+            ):
                 arr_t = self.a.type_of[id(e.base)] if isinstance(e, n.Index) else t
                 assert isinstance(arr_t, ArrayType)
                 self.place(e)

@@ -12,6 +12,7 @@ Operand problems never raise: they become `.ERR` codes.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TypeVar
 
@@ -154,7 +155,7 @@ class TimeBased:
 
 
 def dynamics(
-    ax: Axis,
+    maximum: Callable[[str], float],
     first: int,
     speed: float,
     speed_units: object,
@@ -168,7 +169,8 @@ def dynamics(
     jerk_units: object,
     allow_time_based: bool,
 ) -> Dynamics | TimeBased | StartResult:
-    """Convert MAM/MAJ dynamics operands; `first` is the faceplate index of Speed.
+    """Convert MAM/MAJ/MCLM/MCCM dynamics operands; `first` is the faceplate index of Speed,
+    `maximum(name)` reads a configured maximum (MaximumSpeed ...) of the axis or system.
 
     The speed units choose the mode: Units per MasterUnit / Master Units make the motion
     master driven, the others time driven; accel, decel and (S-curve) jerk units must be of
@@ -190,14 +192,12 @@ def dynamics(
         if not (su in _TIME_BASED and au in _TIME_BASED and du in _TIME_BASED):
             return StartResult(error=MotionError.MDSC_UNITS_CONFLICT)
         return _time_based(first, speed, accel, decel, s_curve, accel_jerk, ju, md)
-    get = ax.layout.get
-    v = ax.value
     if su == PERCENT_OF_MAX:
-        speed = speed * get(v, "MaximumSpeed") / 100.0
+        speed = speed * maximum("MaximumSpeed") / 100.0
     if au == PERCENT_OF_MAX:
-        accel = accel * get(v, "MaximumAccel") / 100.0
+        accel = accel * maximum("MaximumAccel") / 100.0
     if du == PERCENT_OF_MAX:
-        decel = decel * get(v, "MaximumDecel") / 100.0
+        decel = decel * maximum("MaximumDecel") / 100.0
     if not (math.isfinite(speed) and speed >= 0.0):
         return StartResult(error=MotionError.PARAMETER_OUT_OF_RANGE, exerr=first)
     if not (math.isfinite(accel) and accel > 0.0):
@@ -207,11 +207,11 @@ def dynamics(
     ja = jd = math.inf
     if s_curve:
         jerks = []
-        for j, rate, maximum, index in (
+        for j, rate, name, index in (
             (accel_jerk, accel, "MaximumAccelJerk", first + 7),
             (decel_jerk, decel, "MaximumDecelJerk", first + 8),
         ):
-            jerk = jerk_value(j, ju, rate, speed, get(v, maximum))
+            jerk = jerk_value(j, ju, rate, speed, maximum(name))
             if jerk is None:
                 return StartResult(error=MotionError.PARAMETER_OUT_OF_RANGE, exerr=index)
             jerks.append(jerk)

@@ -66,8 +66,9 @@ def _move_dynamics(
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, first + 10)
         return None
     dyn = dynamics(
-        ax, first, real(speed), speed_units, real(accel), accel_units, real(decel), decel_units,
-        shape == 1, real(accel_jerk), real(decel_jerk), jerk_units, allow_time_based,
+        lambda name: ax.layout.get(ax.value, name), first, real(speed), speed_units,
+        real(accel), accel_units, real(decel), decel_units, shape == 1, real(accel_jerk),
+        real(decel_jerk), jerk_units, allow_time_based,
     )  # fmt: skip
     if isinstance(dyn, StartResult):
         failed(rt, ctl, dyn)

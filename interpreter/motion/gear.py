@@ -54,7 +54,7 @@ class GearSet:
         self.a = np.zeros(0)
         self.locked = np.zeros(0, dtype=bool)
         self.last_dir: dict[int, int] = {}  # slave -> +1 same, -1 opposite (absent: none yet)
-        self._idle_status: dict[str, np.ndarray] | None = None  # read-only, shared
+        self._status_cache: tuple[tuple[int, bytes, bytes], dict[str, np.ndarray]] | None = None
 
     def __len__(self) -> int:
         return len(self.handle)
@@ -154,18 +154,19 @@ class GearSet:
         pass
 
     def status(self, n: int) -> dict[str, np.ndarray]:
-        """GearingStatus (geared) and GearingLockStatus (clutch done)."""
-        if not len(self.slave):  # no gear: the same all-clear arrays every update
-            idle = self._idle_status
-            if idle is None or len(idle["GearingStatus"]) != n:
-                off = np.zeros(n, dtype=bool)
-                idle = self._idle_status = {"GearingStatus": off, "GearingLockStatus": off}
-            return idle
+        """GearingStatus (geared) and GearingLockStatus (clutch done); the same dict while
+        they do not change (the group merges the sets' status only when one changed)."""
+        key = (n, self.slave.tobytes(), self.locked.tobytes())
+        cached = self._status_cache
+        if cached is not None and cached[0] == key:
+            return cached[1]
         gear = np.zeros(n, dtype=bool)
         gear[self.slave] = True
         lock = np.zeros(n, dtype=bool)
         lock[self.slave[self.locked]] = True
-        return {"GearingStatus": gear, "GearingLockStatus": lock}
+        out = {"GearingStatus": gear, "GearingLockStatus": lock}
+        self._status_cache = (key, out)
+        return out
 
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         return np.bincount(self.slave, self.v, n), np.bincount(self.slave, self.a, n)

@@ -57,6 +57,13 @@ from interpreter.motion.outputcams import (
     arm_output_cam,
     disarm_output_cam,
 )
+from interpreter.motion.path_moves import (
+    add_coordinate_system,
+    path_start_point,
+    start_path,
+    stop_path,
+)
+from interpreter.motion.paths import PathSet
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
@@ -154,6 +161,7 @@ class MotionGroup:
         self._gears = GearSet()
         self._homing = HomingSet()
         self.output_cams = OutputCamProcessSet(self)  # MAOC/MDOC: after the axes moved
+        self.paths = PathSet()  # coordinate systems and their path moves (MCLM, MCCM, MCS)
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
@@ -163,9 +171,12 @@ class MotionGroup:
             self._homing,
             self._links,
             self.output_cams,
+            self.paths,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
         self.shifted = False  # some shift is not 0 (spares resetting and testing the array)
+        # the sets' status dicts of the latest update and their merge (kept while unchanged)
+        self._owned: tuple[list[dict[str, np.ndarray]], dict[str, np.ndarray]] | None = None
 
     @property
     def _gens(self) -> list[ProfileGen]:
@@ -187,6 +198,10 @@ class MotionGroup:
     change_dynamics = change_dynamics
     arm_output_cam = arm_output_cam
     disarm_output_cam = disarm_output_cam
+    add_coordinate_system = add_coordinate_system
+    path_start_point = path_start_point
+    start_path = start_path
+    stop_path = stop_path
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""
@@ -587,8 +602,18 @@ class MotionGroup:
         velocity bits follow when read (`status`)."""
         n = len(self.axes)
         st = self._status
-        for ps in self._sets:
-            st.update(ps.status(n))
+        parts = [ps.status(n) for ps in self._sets]
+        cached = self._owned
+        if cached is None or any(p is not q for p, q in zip(parts, cached[0], strict=True)):
+            # the sets hand out the same dict while their status is unchanged (its arrays
+            # read-only); a member two kinds set (CoordinatedMotionStatus) is their OR
+            owned: dict[str, np.ndarray] = {}
+            for part in parts:
+                for name, arr in part.items():
+                    prev = owned.get(name)
+                    owned[name] = arr if prev is None else prev | arr
+            cached = self._owned = (parts, owned)
+        st.update(cached[1])
         st["ServoActionStatus"] = self.servo_on.copy()
         st["ShutdownStatus"] = self.shutdown.copy()
         self._status_stale = True

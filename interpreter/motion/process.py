@@ -48,6 +48,9 @@ class Contribution:
     acc: np.ndarray
 
 
+# the status of a kind that owns no AXIS status member (one dict: read, never written)
+_NO_STATUS: dict[str, np.ndarray] = {}
+
 EMPTY = Contribution(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
 
 
@@ -141,7 +144,7 @@ class MotionlessSet:
         pass
 
     def status(self, n: int) -> dict[str, np.ndarray]:
-        return {}
+        return _NO_STATUS
 
     def busy(self, axis: int) -> bool:
         return False  # moves nothing

@@ -111,6 +111,9 @@ class Group:
     average_velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     stale: bool = True  # updated since its axis attributes were last written to the tags
     hooks: list[UpdateHook] = field(default_factory=list)
+    # written with the axis attributes (once before a scan that follows updates): the tags
+    # of what a kind of motion binds to the group besides axes (a coordinate system)
+    observers: list[Callable[[Group], None]] = field(default_factory=list)
 
     @property
     def next_time_ms(self) -> float:
@@ -128,6 +131,9 @@ class MotionRuntime:
         self._group_of: dict[int, Group] = {}
         self._owner: dict[int, tuple[Group, int]] = {}
         self._profiles: dict[int, tuple[Signature, CamProfile]] = {}
+        # objects a kind of motion binds to a tag's storage (id of the storage list), e.g. a
+        # coordinate system registered with its group's core on first use
+        self.attached: dict[int, object] = {}
         self._build(model, storage, coarse_update_ms)
         self._init_cam_profiles(model, storage)
         # Axis attributes are written lazily (decision 0104): every one once now, then only
@@ -327,6 +333,8 @@ class MotionRuntime:
         for g in groups:  # the scan may read them: once per scan, not once per update
             if g.stale:
                 self._write_axes(g)
+                for fn in g.observers:
+                    fn(g)
 
     def _update(self, g: Group) -> None:
         for h in g.hooks:

@@ -194,7 +194,7 @@ class _OperandCheck:
         fmt = op.format
         special = (
             op.enum is not None
-            or fmt in ("routine", "label", "array", "task")
+            or fmt in ("routine", "label", "array", "array_or_value", "task")
             or op.nullable
             or fmt == "object"
             or op.types == ("MODULE",)
@@ -1027,7 +1027,17 @@ class Checker(LadderChecks):
         if fmt == "array":
             self.array_operand(ins, op, e)
             return True
+        if fmt == "array_or_value" and self.names_array(e):
+            self.array_operand(ins, op, e)
+            return True
         return False
+
+    def names_array(self, e: n.Expr) -> bool:
+        """Is the operand an array tag or one of its elements (format array_or_value)?"""
+        if isinstance(e, n.Index):
+            return True
+        tag = self.lookup(e.ident) if isinstance(e, n.Name) else None
+        return tag is not None and isinstance(tag.type, ArrayType)
 
     def task_operand(self, e: n.Expr) -> None:
         """EVENT's Task: a task of the project (a lone routine file has no tasks to check)."""

@@ -432,21 +432,39 @@ class _Reader:
             if fmt == "Axis":
                 members += rotary_members({k.upper(): v for k, v in params.attrs.items()}, sp)
             if fmt == "CoordinateSystem":
-                axes = [
-                    a
-                    for a in _walk(params)
-                    if a.tag in ("Axis", "AxisName", "CoordinateSystemAxis") and a.get("Name")
-                ]
-                if axes:
-                    members.append(
-                        (
-                            "Axes",
-                            sp,
-                            n.ArrayInit([n.Name(a.get("Name"), self.span(a)) for a in axes], sp),
-                        )
-                    )
+                members.extend(self.coordinate_system(params, sp))
             return n.StructInit(members, sp)
         return None
+
+    def coordinate_system(self, params: XElem, sp: n.Span) -> list[tuple[str, n.Span, n.Init]]:
+        """A coordinate system's tolerances and primary axes. Studio lists the axes in the
+        `Axes` attribute with their `CoordinationMode`; only Primary axes span the Cartesian
+        system (orientation and ancillary axes of robots do not), and a system keeps them
+        only when there are 2 or 3 (else MCLM/MCCM report it, error 13)."""
+        out: list[tuple[str, n.Span, n.Init]] = []
+        for attr, member in (
+            ("ActualPositionTolerance", "ActualTolerance"),
+            ("CommandPositionTolerance", "CommandTolerance"),
+        ):
+            text = params.get(attr)
+            try:
+                out.append((member, sp, n.Literal(float(text), "REAL", text, sp)))
+            except ValueError:
+                continue
+        names = params.get("Axes").split()
+        modes = params.get("CoordinationMode").split()
+        if modes and len(modes) == len(names):
+            names = [a for a, m in zip(names, modes, strict=True) if m.lower() == "primary"]
+        items: list[n.Init] = [n.Name(a, sp) for a in names]
+        if not items:  # older exports name the axes in child elements
+            items = [
+                n.Name(a.get("Name"), self.span(a))
+                for a in _walk(params)
+                if a.tag in ("Axis", "AxisName", "CoordinateSystemAxis") and a.get("Name")
+            ]
+        if 2 <= len(items) <= 3:
+            out.append(("Axes", sp, n.ArrayInit(items, sp)))
+        return out
 
     # ------------------------------------------------------------ add-on instructions
     def protected_aoi(self, e: XElem) -> None:

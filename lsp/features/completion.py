@@ -157,7 +157,7 @@ def _fits(t: DataType, op: Operand) -> bool:
     # An array operand (CAM_PROFILE[], CAM[] ...) names the array; the catalog gives its element.
     return (
         isinstance(t, ArrayType)
-        and op.format in ("array", "memory")
+        and op.format in ("array", "array_or_value", "memory")
         and type_matches(t.elem, op.types)
     )
 

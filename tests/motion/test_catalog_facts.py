@@ -15,6 +15,7 @@ import pytest
 from interpreter.motion import enums
 from interpreter.motion.errors import MotionError
 from interpreter.motion.group import STATUS_BITS, MotionGroup
+from interpreter.motion.paths import Termination
 from stdlib import catalog
 
 # core enumeration -> catalog enumeration it mirrors
@@ -33,6 +34,8 @@ MIRRORS: list[tuple[type[IntEnum], str]] = [
     (enums.MasterReference, "PositionReference"),
     (enums.HomeMode, "HomeMode"),
     (enums.HomeSequence, "HomeSequence"),
+    (enums.MergeMode, "CoordMerge"),
+    (Termination, "TerminationType"),
 ]
 
 # words the core's member names leave out of the catalog text ("Time Driven Mode")

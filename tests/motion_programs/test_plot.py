@@ -96,3 +96,28 @@ def test_missing_matplotlib_is_one_line_and_nothing_runs(mp, tmp_path, monkeypat
 def test_plot_file_must_be_png(mp, tmp_path) -> None:
     code, _, err = mp.run(SRC, ["--scans", "5", "--plot", str(tmp_path / "o.jpg")])
     assert code == 2 and ".png" in err
+
+
+@pytest.mark.parametrize(("n", "views"), [(2, ["X-Y"]), (3, ["X-Y", "X-Z", "Y-Z"])])
+def test_coordinate_path_views(tmp_path, monkeypatch, n: int, views: list[str]) -> None:
+    # a 2-axis system is drawn in its X-Y plane; a 3-axis one in the three planes
+    pytest.importorskip("matplotlib")
+    import matplotlib.figure
+
+    from interpreter.plot import PlotData, Series, write_plot
+
+    titles: list[str] = []
+    save = matplotlib.figure.Figure.savefig
+
+    def spy(fig, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
+        titles.extend(ax.get_title() for ax in fig.axes)
+        return save(fig, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", spy)
+    names = ["X.CommandPosition", "Y.CommandPosition", "Z.CommandPosition"][:n]
+    t = [0.0, 0.1, 0.2, 0.3]
+    series = [Series(name, [0.0, 1.0, 0.0, -1.0], "real") for name in names]
+    write_plot(tmp_path / "p.png", PlotData("p", t, series, [("CS", names)]))
+    assert [x for x in titles if x.startswith("coordinate")] == [
+        f"coordinate system path ({v})" for v in views
+    ]

@@ -1,4 +1,5 @@
-"""The motion samples do what their headers say (samples/timecam_blend.st, flying_shear.st)."""
+"""The motion samples do what their headers say (samples/timecam_blend.st, flying_shear.st,
+rounded_rectangle.st)."""
 
 from __future__ import annotations
 
@@ -83,3 +84,28 @@ def test_flying_shear_cuts_four_pieces_in_sync(tmp_path, capsys) -> None:
         if r[2] == "1":  # knife down: carriage in the synchronous stretch at strip speed
             assert float(r[4]) == pytest.approx(float(r[5]), abs=1e-3)
             assert 150.0 - 1e-3 <= float(r[6]) <= 250.0 + 1e-3
+
+
+def test_rounded_rectangle_closes_the_path_without_stopping(tmp_path, capsys) -> None:
+    trace = tmp_path / "rr.csv"
+    tags = _run(
+        capsys, "rounded_rectangle.st", "--duration", "6", "--trace", str(trace),
+        "--watch", "X.CommandPosition", "--watch", "Y.CommandPosition",
+        "--watch", "XY.VectorCommandVelocity", "--watch", "ArcCtl[7].PC", "--watch", "Step",
+    )  # fmt: skip
+    assert tags["X.CommandPosition"] == 5.0 and tags["Y.CommandPosition"] == 0.0
+    assert tags["ArcCtl[7].PC"] is True and tags["Step"] == 8
+    rows = [line.split(",") for line in trace.read_text().splitlines()[1:]]
+    # between the first ramp and the last: the joints dip to sqrt(2 * 200 * 0.5) = 14.1
+    # at the least (less one update of deceleration, 200 * 0.002), never to zero
+    middle = [float(r[3]) for r in rows if 0.2 <= float(r[0]) <= 5.7]
+    assert min(middle) >= 14.142 - 0.4 - 1e-3
+    # the path: every point on the rounded rectangle (sides or corner circles of radius 5);
+    # a blend leaves it by a few thousandths (the two moves' motions add up there)
+    for r in rows:
+        x, y = float(r[1]), float(r[2])
+        cx, cy = min(max(x, 5.0), 35.0), min(max(y, 5.0), 15.0)
+        if (cx, cy) != (x, y) and not (5.0 <= x <= 35.0 or 5.0 <= y <= 15.0):
+            assert abs(((x - cx) ** 2 + (y - cy) ** 2) ** 0.5 - 5.0) < 0.01
+        else:
+            assert min(abs(x), abs(x - 40.0), abs(y), abs(y - 20.0)) < 0.01
