@@ -51,6 +51,7 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
+from interpreter.motion.poscam import CamLaw, Coupling, PositionCamSet, start_position_cam
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -138,11 +139,13 @@ class MotionGroup:
         self._links = LinkTable()  # MDAC master assignments
         self._gears = GearSet()
         self._homing = HomingSet()
+        self.position_cams = PositionCamSet()  # MC_CamIn couplings
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
             self._cams,
             self._gears,
+            self.position_cams,
             self.watch,
             self._homing,
             self._links,
@@ -434,6 +437,13 @@ class MotionGroup:
             execution_mode, execution_schedule, lock_position, lock_direction,
             instruction_mode,
         )  # fmt: skip
+
+    # -- position cams (MC_CamIn) -------------------------------------------------------
+    def start_position_cam(
+        self, slave: int, master: int, law: CamLaw, reference: int = MasterReference.COMMAND
+    ) -> Coupling:
+        """Couple slave to master through a cam law (see poscam.start_position_cam)."""
+        return start_position_cam(self, self.position_cams, slave, master, law, reference)
 
     # -- the update ------------------------------------------------------------------------
     def _compute_levels(self) -> None:

@@ -1,0 +1,562 @@
+"""Position cams: a slave follows a cam profile of its master's position, advanced together
+with numpy (one row per coupling). Front ends: the PLCopen MC_CamIn block (adapters in
+interpreter/instructions/plcopen.py). Decisions 0126-0128.
+
+The law of one coupling, evaluated at every coarse update:
+    X = MasterScaling * (master - m0) + MasterOffset            (m0 = 0: master absolute)
+    Y = SlaveScaling * CAM(local(X)) + base + rel * (k - k0) * SlaveScaling * CAM(end)
+    slave = Y + c(t)
+- periodic cams wrap X into the profile range (k = passes counted from the start of the
+  range, k0 at coupling); a relative coupling adds the cam's end value at each pass (its
+  slave position at the end of a pass becomes the offset of the next), an absolute one
+  evaluates every pass as it is (it may jump);
+- base = SlaveOffset (absolute) or SlaveOffset + the slave's position at coupling (relative);
+- c(t) is the ramp-in compensation: it starts at the jump the law would make at coupling
+  and runs to 0 as a trapezoid (VelocityDiff, Acceleration, Deceleration) starting at rest,
+  so the velocity the slave adds to the cam never exceeds VelocityDiff.
+The cam profiles are evaluated with cam.ProfileBank (one searchsorted for every row), the
+evaluation the time cams use.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from interpreter.motion.cam import CamProfile, ProfileBank
+from interpreter.motion.enums import EventKind, MasterReference, StopType
+from interpreter.motion.process import (
+    EMPTY,
+    AxisState,
+    Contribution,
+    Ending,
+    EndReason,
+    Events,
+    LevelSel,
+    rows_at_level,
+)
+
+if TYPE_CHECKING:
+    from interpreter.motion.group import MotionGroup
+
+
+class CamInError(IntEnum):
+    """ErrorID of the PLCopen camming blocks (our numbering; catalog enum MC_ErrorID)."""
+
+    NONE = 0
+    INVALID_AXIS = 1
+    SAME_AXIS = 2
+    INVALID_CAM_TABLE = 3
+    INVALID_CAM_TABLE_ID = 4
+    MASTER_OUT_OF_RANGE = 5
+    INVALID_PARAMETER = 6
+    SLAVE_NOT_READY = 7
+
+
+class CamStartMode(IntEnum):
+    """MC_CamIn StartMode (catalog enum StartMode)."""
+
+    ABSOLUTE = 0
+    RELATIVE = 1
+    RAMP_IN = 2
+    RAMP_IN_POS = 3
+    RAMP_IN_NEG = 4
+
+
+class CouplingState(IntEnum):
+    STARTING = 0  # executed, applied at the next update
+    RAMPING = 1  # coupled, ramp-in compensation running
+    IN_SYNC = 2  # the slave follows the law
+    ENDED = 3  # a non-periodic cam reached its end: the slave holds
+    ABORTED = 4  # another motion took the slave
+    ERROR = 5
+
+
+@dataclass(frozen=True, slots=True)
+class CamLaw:
+    """What a coupling evaluates: the profile, its options and the scalings."""
+
+    profile: CamProfile
+    periodic: bool = False
+    master_absolute: bool = True
+    slave_absolute: bool = True
+    master_scaling: float = 1.0
+    master_offset: float = 0.0
+    slave_scaling: float = 1.0
+    slave_offset: float = 0.0
+    start_mode: CamStartMode = CamStartMode.ABSOLUTE
+    velocity_diff: float = 0.0
+    acceleration: float = 0.0
+    deceleration: float = 0.0
+
+    @property
+    def relative(self) -> bool:
+        """The seed's StartMode x SlaveAbsolute table: relative StartMode is always relative,
+        every other one becomes relative when SlaveAbsolute is FALSE."""
+        return self.start_mode == CamStartMode.RELATIVE or not self.slave_absolute
+
+    @property
+    def ramp(self) -> bool:
+        return self.start_mode >= CamStartMode.RAMP_IN
+
+
+@dataclass(slots=True)
+class Coupling:
+    """One position cam coupling; the front end reads its state after every update."""
+
+    handle: int
+    slave: int
+    master: int
+    reference: MasterReference
+    law: CamLaw
+    state: CouplingState = CouplingState.STARTING
+    error: CamInError = CamInError.NONE
+    ends: int = 0  # profile ends passed so far (EndOfProfile)
+    pending: CamLaw | None = None  # a table switch taken at the next profile end
+    # row state (copied from/to the set's arrays when rows are rebuilt)
+    m0: float = 0.0
+    base: float = 0.0
+    k0: float = 0.0
+    k: float = 0.0
+    last: float = 0.0
+    ramp_dist: float = 0.0  # signed compensation at coupling (slave minus law)
+    ramp_t: float = 0.0
+    ramp_total: float = 0.0
+    v: float = 0.0
+    a: float = 0.0
+
+    @property
+    def in_sync(self) -> bool:
+        return self.state == CouplingState.IN_SYNC
+
+    @property
+    def busy(self) -> bool:
+        return self.state in (CouplingState.STARTING, CouplingState.RAMPING, CouplingState.IN_SYNC)
+
+
+def validate_law(law: CamLaw) -> CamInError:
+    """Operand checks that need no axis state (done when the block executes)."""
+    scalars = (law.master_scaling, law.master_offset, law.slave_scaling, law.slave_offset)
+    if not all(math.isfinite(x) for x in scalars) or law.master_scaling == 0.0:
+        return CamInError.INVALID_PARAMETER
+    if law.start_mode not in CamStartMode.__members__.values():
+        return CamInError.INVALID_PARAMETER
+    if law.ramp and not all(
+        math.isfinite(x) and x > 0.0
+        for x in (law.velocity_diff, law.acceleration, law.deceleration)
+    ):
+        return CamInError.INVALID_PARAMETER
+    return CamInError.NONE
+
+
+def ramp_time(dist: float, v: float, a: float, d: float) -> float:
+    """Duration of a rest-to-rest trapezoid over |dist| with speed v, accel a, decel d."""
+    dist = abs(dist)
+    if dist == 0.0:
+        return 0.0
+    d_min = v * v / (2.0 * a) + v * v / (2.0 * d)
+    if dist >= d_min:
+        return v / a + v / d + (dist - d_min) / v
+    vp = math.sqrt(2.0 * dist * a * d / (a + d))
+    return vp / a + vp / d
+
+
+def ramp_profile(
+    t: np.ndarray, dist: np.ndarray, v: np.ndarray, a: np.ndarray, d: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Distance travelled, velocity and acceleration of rest-to-rest trapezoids at time t."""
+    dist = np.abs(dist)
+    d_min = v * v / (2.0 * a) + v * v / (2.0 * d)
+    full = dist >= d_min
+    vp = np.where(full, v, np.sqrt(2.0 * dist * a * d / (a + d)))
+    t1 = vp / a
+    t3 = vp / d
+    t2 = np.where(full, (dist - d_min) / np.where(v > 0, v, 1.0), 0.0)
+    total = t1 + t2 + t3
+    tau = np.maximum(total - t, 0.0)
+    q = np.where(
+        t <= t1,
+        0.5 * a * t * t,
+        np.where(t <= t1 + t2, 0.5 * a * t1 * t1 + vp * (t - t1), dist - 0.5 * d * tau * tau),
+    )
+    vel = np.where(t <= t1, a * t, np.where(t <= t1 + t2, vp, d * tau))
+    acc = np.where(t <= t1, a, np.where(t <= t1 + t2, 0.0, -d))
+    after = t >= total
+    return (
+        np.where(after, dist, q),
+        np.where(after, 0.0, vel),
+        np.where(after, 0.0, acc),
+    )
+
+
+def evaluate_law(
+    law: CamLaw, master: np.ndarray | float, m0: float = 0.0, base: float | None = None,
+    k0: float = 0.0,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """Whole-trajectory form of the law (no ramp): Y, dY/dmaster, d2Y/dmaster2 and the
+    pass index k at master positions (plots and tests; the set evaluates the same law)."""
+    p = law.profile
+    ms, ss = law.master_scaling, law.slave_scaling
+    x = ms * (np.asarray(master, dtype=float) - m0) + law.master_offset
+    if law.periodic:
+        k = np.floor((x - p.start) / p.span)
+        local = x - k * p.span
+    else:
+        k = np.zeros_like(x)
+        local = np.clip(x, p.start, p.end)
+    pos, vel, acc = p.evaluate(local)
+    b = law.slave_offset if base is None else base
+    rel = 1.0 if law.relative else 0.0
+    y = ss * pos + b + rel * (k - k0) * ss * p.p_end
+    return y, ss * vel * ms, ss * acc * ms * ms, k
+
+
+class PositionCamSet:
+    """Running couplings in struct-of-arrays form; rows are rebuilt when the set changes."""
+
+    def __init__(self) -> None:
+        self.rows: list[Coupling] = []
+        self._dirty = True
+        self._bank: ProfileBank | None = None
+        self._ended: list[Coupling] = []
+
+    # -- membership ---------------------------------------------------------------
+    def _sync_out(self) -> None:
+        """Copy the array state back into the Coupling objects before the rows change."""
+        if self._dirty or not self.rows:
+            return
+        for i, c in enumerate(self.rows):
+            c.k = float(self._k[i])
+            c.last = float(self._last[i])
+            c.ramp_t = float(self._rt[i])
+            c.v = float(self._v[i])
+            c.a = float(self._a[i])
+
+    def add(self, c: Coupling) -> None:
+        self._sync_out()
+        self.rows.append(c)
+        self._dirty = True
+
+    def remove(self, gone: list[Coupling]) -> None:
+        self._sync_out()
+        ids = {id(c) for c in gone}
+        self.rows = [c for c in self.rows if id(c) not in ids]
+        self._dirty = True
+
+    def on_axis(self, axis: int) -> list[Coupling]:
+        self._sync_out()
+        return [c for c in self.rows if c.slave == axis]
+
+    def _rebuild(self) -> None:
+        rows = self.rows
+        profiles: list[CamProfile] = []
+        index: dict[int, int] = {}
+        for c in rows:
+            if id(c.law.profile) not in index:
+                index[id(c.law.profile)] = len(profiles)
+                profiles.append(c.law.profile)
+        if self._bank is None or self._bank.key != tuple(id(p) for p in profiles):
+            self._bank = ProfileBank(profiles)
+        f = float
+        laws = [c.law for c in rows]
+        prof = np.array([index[id(law.profile)] for law in laws], dtype=np.intp)
+        self._slave = np.array([c.slave for c in rows], dtype=np.intp)
+        self._master = np.array([c.master for c in rows], dtype=np.intp)
+        self._cmd = np.array([c.reference == MasterReference.COMMAND for c in rows], dtype=bool)
+        self._ms = np.array([law.master_scaling for law in laws], dtype=f)
+        self._mo = np.array([law.master_offset for law in laws], dtype=f)
+        self._ss = np.array([law.slave_scaling for law in laws], dtype=f)
+        self._rel = np.array([1.0 if law.relative else 0.0 for law in laws], dtype=f)
+        self._periodic = np.array([law.periodic for law in laws], dtype=bool)
+        self._start = np.array([law.profile.start for law in laws], dtype=f)
+        self._span = np.array([law.profile.span for law in laws], dtype=f)
+        self._pend = np.array([law.profile.p_end for law in laws], dtype=f)
+        self._m0 = np.array([c.m0 for c in rows], dtype=f)
+        self._base = np.array([c.base for c in rows], dtype=f)
+        self._k0 = np.array([c.k0 for c in rows], dtype=f)
+        self._k = np.array([c.k for c in rows], dtype=f)
+        self._last = np.array([c.last for c in rows], dtype=f)
+        self._rd = np.array([c.ramp_dist for c in rows], dtype=f)
+        self._rt = np.array([c.ramp_t for c in rows], dtype=f)
+        self._rtotal = np.array([c.ramp_total for c in rows], dtype=f)
+        self._rv = np.array([max(law.velocity_diff, 1e-300) for law in laws], dtype=f)
+        self._ra = np.array([max(law.acceleration, 1e-300) for law in laws], dtype=f)
+        self._rdec = np.array([max(law.deceleration, 1e-300) for law in laws], dtype=f)
+        self._ramping = np.array([c.state == CouplingState.RAMPING for c in rows], dtype=bool)
+        self._any_ramp = bool(self._ramping.any())
+        self._watch = np.array([c.pending is not None for c in rows], dtype=bool)
+        self._v = np.array([c.v for c in rows], dtype=f)
+        self._a = np.array([c.a for c in rows], dtype=f)
+        bank = self._bank
+        self._row_base = bank.base[prof]
+        self._row_first = bank.first_seg[prof]
+        self._row_last = bank.last_seg[prof]
+        self._all = np.arange(len(rows))
+        self._dirty = False
+
+    # -- stepping -----------------------------------------------------------------
+    def begin_update(self) -> None:
+        self._ended = []
+
+    def step(
+        self,
+        cup: float,
+        level_sel: LevelSel,
+        positions: AxisState,
+        velocities: AxisState,
+        events: Events,
+    ) -> Contribution:
+        if not self.rows:
+            return EMPTY
+        if self._dirty:
+            self._rebuild()
+        sel = rows_at_level(level_sel, self._slave)
+        if isinstance(sel, np.ndarray) and len(sel) == 0:
+            return EMPTY
+        master = self._master[sel]
+        cmd = self._cmd[sel]
+        m = np.where(cmd, positions[1][master], positions[0][master])
+        vm = np.where(cmd, velocities[1][master], velocities[0][master])
+        ms = self._ms[sel]
+        x = ms * (m - self._m0[sel]) + self._mo[sel]
+        start, span = self._start[sel], self._span[sel]
+        periodic = self._periodic[sel]
+        k = np.where(periodic, np.floor((x - start) / span), 0.0)
+        local = x - start - k * span  # 0..span inside the range
+        outside = ~periodic & ((local < 0.0) | (local > span))
+        local = np.minimum(np.maximum(local, 0.0), span)
+        assert self._bank is not None
+        p, dp, ddp = self._bank.evaluate_rows(
+            self._row_base[sel], self._row_first[sel], self._row_last[sel], local
+        )
+        ss = self._ss[sel]
+        y = ss * p + self._base[sel] + self._rel[sel] * (k - self._k0[sel]) * ss * self._pend[sel]
+        mv = ms * vm
+        vel = np.where(outside, 0.0, ss * dp * mv)
+        acc = np.where(outside, 0.0, ss * ddp * mv * mv)
+        if self._any_ramp:
+            ramping = self._ramping[sel]
+            t = self._rt[sel] + np.where(ramping, cup, 0.0)
+            self._rt[sel] = t
+            rd = self._rd[sel]
+            q, qv, qa = ramp_profile(t, rd, self._rv[sel], self._ra[sel], self._rdec[sel])
+            sign = np.sign(rd)
+            y = y + np.where(ramping, rd - sign * q, 0.0)
+            vel = vel - np.where(ramping, sign * qv, 0.0)
+            acc = acc - np.where(ramping, sign * qa, 0.0)
+        dpos = y - self._last[sel]
+        self._last[sel] = y
+        self._v[sel] = vel
+        self._a[sel] = acc
+        prev_k = self._k[sel].copy()
+        passed = k != prev_k
+        self._k[sel] = k
+        if self._any_ramp or outside.any() or passed.any():
+            self._events(sel, outside, passed, prev_k, k, x, events)
+        return Contribution(self._slave[sel], dpos, vel, acc)
+
+    def _events(
+        self,
+        sel: slice | np.ndarray,
+        outside: np.ndarray,
+        passed: np.ndarray,
+        prev_k: np.ndarray,
+        k: np.ndarray,
+        x: np.ndarray,
+        events: Events,
+    ) -> None:
+        """The rare per-row changes: ramp finished, profile end passed, table switch."""
+        rows = self._all[sel]
+        for j in np.flatnonzero(passed | outside | self._ramping[sel]):
+            r = int(rows[j])
+            c = self.rows[r]
+            if self._ramping[r] and self._rt[r] >= self._rtotal[r] - 1e-12:
+                self._ramping[r] = False
+                self._any_ramp = bool(self._ramping.any())
+                c.state = CouplingState.IN_SYNC
+            if passed[j]:
+                c.ends += int(abs(k[j] - prev_k[j])) or 1
+            if outside[j]:
+                c.ends += 1
+                c.state = CouplingState.ENDED
+                self._v[r] = 0.0
+                self._a[r] = 0.0
+                self._ended.append(c)
+                events.append((c.handle, EventKind.COMPLETE, c.slave))
+            if (passed[j] or outside[j]) and c.pending is not None:
+                p = c.law.profile
+                if outside[j]:  # the end the master left the range by
+                    forward = bool(x[j] > p.end)
+                    x_end = p.end if forward else p.start
+                else:  # the pass boundary crossed, forward or back
+                    forward = bool(k[j] > prev_k[j])
+                    x_end = p.start + max(k[j], prev_k[j]) * p.span
+                self._switch(r, c, float(x_end), bool(outside[j]), forward, events)
+
+    def _switch(
+        self, r: int, c: Coupling, x_end: float, ended: bool, forward: bool, events: Events
+    ) -> None:
+        """A new table selected while coupled takes over at the profile end: its master zero
+        is the master position at that end, its relative base the slave position there."""
+        law, new = c.law, c.pending
+        assert new is not None
+        m0, ms, mo = float(self._m0[r]), law.master_scaling, law.master_offset
+        m_end = (x_end - mo) / ms + m0
+        # the slave value at the end of the pass just left (forward: its end, back: its start)
+        p = law.profile
+        boundary = round((x_end - p.start) / p.span) if law.periodic else 0
+        pass_left = boundary - 1 if forward and law.periodic else boundary
+        pv = p.p_end if forward else p.p_start
+        rel = 1.0 if law.relative else 0.0
+        y_end = law.slave_scaling * (pv + rel * (pass_left - float(self._k0[r])) * p.p_end)
+        y_end += float(self._base[r])
+        c.pending = None
+        if ended:  # the coupling goes on with the new table: no end after all
+            self._ended = [e for e in self._ended if e is not c]
+            events.remove((c.handle, EventKind.COMPLETE, c.slave))
+        self._sync_out()
+        contributed = c.last
+        c.law = new
+        err = place(c, float(m_end), float(y_end))
+        c.last = contributed  # the next update moves on from what this one commanded
+        if err != CamInError.NONE:  # e.g. the new non-periodic cam does not cover the master
+            c.state, c.error = CouplingState.ERROR, err
+            self._ended.append(c)
+            events.append((c.handle, EventKind.ENDED, c.slave))
+        self._dirty = True
+
+    def end_update(self, actual: np.ndarray, events: Events) -> None:
+        if self._ended:
+            self.remove(self._ended)
+            self._ended = []
+
+    def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        if self._dirty:
+            self._rebuild()
+        if not self.rows:
+            return np.zeros(n), np.zeros(n)
+        return np.bincount(self._slave, self._v, n), np.bincount(self._slave, self._a, n)
+
+    def edges(self) -> list[tuple[int, int]]:
+        return [(c.slave, c.master) for c in self.rows]
+
+    def shift_master(self, axis: int, delta: float) -> None:
+        """A master counted from its coupling position keeps counting travel (MRP, MAH)."""
+        self._sync_out()
+        for c in self.rows:
+            if c.master == axis and not c.law.master_absolute:
+                c.m0 += delta
+                self._dirty = True
+
+    def status(self, n: int) -> dict[str, np.ndarray]:
+        return {}
+
+    def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
+        """A stop of all motion or of position cams, a merge and a kill take the slave."""
+        if reason not in (Ending.KILL, Ending.MERGE_ALL, StopType.ALL, StopType.POSITION_CAM):
+            return 0.0, False
+        gone = self.on_axis(axis)
+        v = 0.0
+        for c in gone:
+            v += c.v
+            c.state = CouplingState.ABORTED
+            events.append((c.handle, EventKind.ENDED, axis))
+        if gone:
+            self.remove(gone)
+        return v, bool(gone)
+
+    def busy(self, axis: int) -> bool:
+        return bool(self.on_axis(axis))
+
+    def links_in_use(self) -> set[int]:
+        return set()
+
+    def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
+        pass
+
+
+def place(c: Coupling, m: float, s: float) -> CamInError:
+    """Fix a coupling's reference at master position m and slave position s (the coupling
+    update, or a table switch): master zero, relative base, pass count and ramp-in."""
+    law = c.law
+    p = law.profile
+    c.m0 = 0.0 if law.master_absolute else m
+    x = law.master_scaling * (m - c.m0) + law.master_offset
+    if not law.periodic and not (p.start - 1e-9 <= x <= p.end + 1e-9):
+        return CamInError.MASTER_OUT_OF_RANGE
+    c.k0 = math.floor((x - p.start) / p.span) if law.periodic else 0.0
+    c.k = c.k0
+    c.base = law.slave_offset + (s if law.relative else 0.0)
+    y, _, _, _ = evaluate_law(law, m, c.m0, c.base, c.k0)
+    c.last = s
+    c.ramp_t = 0.0
+    if law.ramp and abs(s - float(y)) > 1e-12:
+        c.ramp_dist = s - float(y)
+        c.ramp_total = ramp_time(c.ramp_dist, law.velocity_diff, law.acceleration, law.deceleration)
+        c.state = CouplingState.RAMPING
+    else:
+        c.ramp_dist = 0.0
+        c.ramp_total = 0.0
+        c.state = CouplingState.IN_SYNC
+    return CamInError.NONE
+
+
+def start_position_cam(
+    group: MotionGroup,
+    cams: PositionCamSet,
+    slave: int,
+    master: int,
+    law: CamLaw,
+    reference: int = MasterReference.COMMAND,
+) -> Coupling:
+    """Couple the slave to the master at the next update (MC_CamIn). The returned coupling
+    reports its state; a check that needs the axis state at coupling (the master inside a
+    non-periodic cam's range) is made there and shows as state ERROR."""
+    h = group.new_handle()
+    ref = group.effective_reference(master, MasterReference(reference))
+    c = Coupling(h, slave, master, ref, law)
+    err = validate_law(law)
+    if err == CamInError.NONE and slave == master:
+        err = CamInError.SAME_AXIS
+    if err == CamInError.NONE and (group.shutdown[slave] or not group.servo_on[slave]):
+        err = CamInError.SLAVE_NOT_READY
+    if err != CamInError.NONE:
+        c.state, c.error = CouplingState.ERROR, err
+        return c
+
+    def apply(ev: Events) -> None:
+        if c.state != CouplingState.STARTING:  # replaced before it was applied
+            return
+        # another coupling of this slave is taken over (CommandAborted)
+        for old in cams.on_axis(slave):
+            old.state = CouplingState.ABORTED
+            ev.append((old.handle, EventKind.ENDED, slave))
+            cams.remove([old])
+        pos = group.command_position if ref == MasterReference.COMMAND else group.actual_position
+        vel = group.command_velocity if ref == MasterReference.COMMAND else group.actual_velocity
+        err = place(c, float(pos[master]), float(group.command_position[slave]))
+        if err != CamInError.NONE:
+            c.state, c.error = CouplingState.ERROR, err
+            return
+        _, dy, _, _ = evaluate_law(law, float(pos[master]), c.m0, c.base, c.k0)
+        c.v = float(dy) * float(vel[master])
+        cams.add(c)
+        group.levels_changed()
+        ev.append((h, EventKind.IN_PROCESS, slave))
+
+    group.after_update(apply)
+    return c
+
+
+def switch_table(cams: PositionCamSet, c: Coupling, law: CamLaw) -> CamInError:
+    """Select another table for a running coupling; it takes over at the next profile end."""
+    err = validate_law(law)
+    if err == CamInError.NONE:
+        c.pending = law
+        cams._sync_out()
+        cams._dirty = True
+    return err
