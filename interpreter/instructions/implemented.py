@@ -100,6 +100,8 @@ IMPLEMENTED = frozenset(
         "MCSD",
         "MCSR",
         "MCSV",
+        "MC_CAMIN",
+        "MC_CAMTABLESELECT",
         "MDAC",
         "MDF",
         "MDO",

@@ -112,6 +112,9 @@ class MotionRuntime:
         self._group_of: dict[int, Group] = {}
         self._owner: dict[int, tuple[Group, int]] = {}
         self._profiles: dict[int, tuple[Signature, CamProfile]] = {}
+        # state that instruction families keep per run (PLCopen blocks: their selections and
+        # the state of each instance), by family name
+        self.extensions: dict[str, object] = {}
         self._build(model, storage, coarse_update_ms)
         self._init_cam_profiles(model, storage)
         # Axis attributes are written lazily (decision 0104): every one once now, then only
