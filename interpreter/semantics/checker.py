@@ -106,6 +106,14 @@ def _elementary_accepted(accepted: tuple[str, ...]) -> frozenset[str]:
     return frozenset(name for name, t in ELEMENTARY.items() if type_matches(t, accepted))
 
 
+def block_reference_fits(mt: DataType, vt: DataType) -> bool:
+    """A function-block input passed by reference: an axis for an axis parameter, a whole
+    one-dimensional array of the parameter's structure (a CAM table) for a structure one."""
+    if is_axis(mt):
+        return is_axis(vt)
+    return isinstance(vt, ArrayType) and vt.elem == mt and len(vt.dims) == 1
+
+
 def unimplemented(ins: Instruction, language: str) -> bool:
     """U304: a catalog instruction that has no implementation in this language yet."""
     if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
@@ -752,6 +760,7 @@ class Checker(LadderChecks):
                 self.err(
                     "E130", "function block parameters are given by name (Name := value)", a.span
                 )
+                given.add("")  # reported: no missing-parameter error on top
                 continue
             out = a.name.endswith("=>")
             mname = a.name[:-2] if out else a.name
@@ -797,7 +806,7 @@ class Checker(LadderChecks):
                 )
             fb.inputs.append((m[0], m[1], a.value))
         missing = [m.name for m in info.values() if m.required and m.name.upper() not in given]
-        if missing:
+        if missing and "" not in given:
             self.err(
                 "E104",
                 f"call of '{c.name}' ({st.name}) is missing {', '.join(missing)}",
@@ -808,13 +817,7 @@ class Checker(LadderChecks):
 
     @staticmethod
     def fb_reference(mt: DataType, vt: DataType, e: n.Expr) -> bool:
-        """An input passed by reference: an axis for an axis parameter, a whole array of the
-        parameter's structure (a CAM table) for a structure parameter."""
-        if not isinstance(e, n.Name | n.Member):
-            return False
-        if is_axis(mt):
-            return is_axis(vt)
-        return isinstance(vt, ArrayType) and vt.elem == mt and len(vt.dims) == 1
+        return isinstance(e, n.Name | n.Member) and block_reference_fits(mt, vt)
 
     def aoi_arguments(self, name: str, args: list[n.Expr]) -> None:
         """InOut arguments are passed by reference: they need the parameter's exact type."""
