@@ -88,6 +88,7 @@ IMPLEMENTED = frozenset(
         "MAHD",
         "MAJ",
         "MAM",
+        "MAPC",
         "MAR",
         "MAS",
         "MASD",

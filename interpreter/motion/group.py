@@ -51,7 +51,13 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
-from interpreter.motion.poscam import CamLaw, Coupling, PositionCamSet, start_position_cam
+from interpreter.motion.poscam import (
+    CamLaw,
+    Coupling,
+    PositionCamSet,
+    start_mapc,
+    start_position_cam,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -444,6 +450,28 @@ class MotionGroup:
     ) -> Coupling:
         """Couple slave to master through a cam law (see poscam.start_position_cam)."""
         return start_position_cam(self, self.position_cams, slave, master, law, reference)
+
+    def start_mapc(
+        self,
+        slave: int,
+        master: int,
+        profile: CamProfile | None,
+        direction: int = CamDirection.SAME,
+        slave_scaling: float = 1.0,
+        master_scaling: float = 1.0,
+        execution_mode: int = 0,
+        execution_schedule: int = 0,
+        master_lock_position: float = 0.0,
+        cam_lock_position: float = 0.0,
+        reference: int = MasterReference.ACTUAL,
+        master_direction: int = 0,
+    ) -> StartResult:
+        """MAPC; profile None means not calculated (ERR 32). See poscam.start_mapc."""
+        return start_mapc(
+            self, self.position_cams, slave, master, profile, direction, slave_scaling,
+            master_scaling, execution_mode, execution_schedule, master_lock_position,
+            cam_lock_position, reference, master_direction,
+        )  # fmt: skip
 
     # -- the update ------------------------------------------------------------------------
     def _compute_levels(self) -> None:

@@ -28,7 +28,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpreter.motion.cam import CamProfile, ProfileBank
-from interpreter.motion.enums import EventKind, MasterReference, StopType
+from interpreter.motion.enums import CamDirection, EventKind, MasterReference, StopType
+from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.process import (
     EMPTY,
     AxisState,
@@ -67,6 +68,32 @@ class CamStartMode(IntEnum):
     RAMP_IN_NEG = 4
 
 
+class PositionCamMode(IntEnum):
+    """MAPC ExecutionMode (catalog enum PositionCamExecutionMode)."""
+
+    ONCE = 0
+    CONTINUOUS = 1
+    PERSISTENT = 2
+
+
+class PositionCamSchedule(IntEnum):
+    """MAPC ExecutionSchedule (catalog enum PositionCamExecutionSchedule)."""
+
+    IMMEDIATE = 0
+    PENDING = 1
+    FORWARD_ONLY = 2
+    REVERSE_ONLY = 3
+    BI_DIRECTIONAL = 4
+
+
+class CamMasterDirection(IntEnum):
+    """MAPC MasterDirection (catalog enum CamMasterDirection)."""
+
+    BI_DIRECTIONAL = 0
+    FORWARD_ONLY = 1
+    REVERSE_ONLY = 2
+
+
 class CouplingState(IntEnum):
     STARTING = 0  # executed, applied at the next update
     RAMPING = 1  # coupled, ramp-in compensation running
@@ -74,6 +101,7 @@ class CouplingState(IntEnum):
     ENDED = 3  # a non-periodic cam reached its end: the slave holds
     ABORTED = 4  # another motion took the slave
     ERROR = 5
+    ARMED = 6  # MAPC: waiting for the master to cross MasterLockPosition
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,6 +120,12 @@ class CamLaw:
     velocity_diff: float = 0.0
     acceleration: float = 0.0
     deceleration: float = 0.0
+    # Logix MAPC: the cam moves the slave incrementally from where it is at lock (each
+    # continuous pass adds the profile's net change), Persistent holds outside the range
+    # instead of ending, and MasterDirection lets the slave follow one way only
+    incremental: bool = False
+    persistent: bool = False
+    master_direction: int = 0  # 0 both ways, 1 forward only, 2 reverse only
 
     @property
     def relative(self) -> bool:
@@ -117,12 +151,17 @@ class Coupling:
     error: CamInError = CamInError.NONE
     ends: int = 0  # profile ends passed so far (EndOfProfile)
     pending: CamLaw | None = None  # a table switch taken at the next profile end
+    lock: tuple[int, float] | None = None  # MAPC armed: (schedule, MasterLockPosition)
+    prev_master: float | None = None  # the master position at the previous update (lock)
+    mapc: bool = False  # shows in the axis PositionCam* status bits
     # row state (copied from/to the set's arrays when rows are rebuilt)
     m0: float = 0.0
     base: float = 0.0
     k0: float = 0.0
     k: float = 0.0
     last: float = 0.0
+    pass_add: float = 0.0  # added to the slave per pass of a periodic cam
+    peak: float = math.nan  # MasterDirection one way: the furthest X reached
     ramp_dist: float = 0.0  # signed compensation at coupling (slave minus law)
     ramp_t: float = 0.0
     ramp_total: float = 0.0
@@ -197,8 +236,9 @@ def evaluate_law(
     law: CamLaw, master: np.ndarray | float, m0: float = 0.0, base: float | None = None,
     k0: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
-    """Whole-trajectory form of the law (no ramp): Y, dY/dmaster, d2Y/dmaster2 and the
-    pass index k at master positions (plots and tests; the set evaluates the same law)."""
+    """Whole-trajectory form of the law (no ramp, both master directions): Y, dY/dmaster,
+    d2Y/dmaster2 and the pass index k at master positions (plots and tests; the set evaluates
+    the same law)."""
     p = law.profile
     ms, ss = law.master_scaling, law.slave_scaling
     x = ms * (np.asarray(master, dtype=float) - m0) + law.master_offset
@@ -210,19 +250,36 @@ def evaluate_law(
         local = np.clip(x, p.start, p.end)
     pos, vel, acc = p.evaluate(local)
     b = law.slave_offset if base is None else base
-    rel = 1.0 if law.relative else 0.0
-    y = ss * pos + b + rel * (k - k0) * ss * p.p_end
+    y = ss * pos + b + (k - k0) * pass_add(law)
     return y, ss * vel * ms, ss * acc * ms * ms, k
 
 
+def pass_add(law: CamLaw) -> float:
+    """What a periodic cam adds to the slave per pass: MAPC the profile's net change; a
+    relative MC_CamIn the cam's end value (the slave's position at the end of a pass is the
+    offset of the next); an absolute MC_CamIn nothing (each pass as it is)."""
+    if law.incremental:
+        return law.slave_scaling * law.profile.net
+    return law.slave_scaling * law.profile.p_end if law.relative else 0.0
+
+
 class PositionCamSet:
-    """Running couplings in struct-of-arrays form; rows are rebuilt when the set changes."""
+    """Running couplings in struct-of-arrays form; rows are rebuilt when the set changes.
+    MAPC cams waiting for their lock position (`armed`) and queued behind an active one
+    (`pending`, per slave) are kept aside until they start."""
 
     def __init__(self) -> None:
         self.rows: list[Coupling] = []
+        self.armed: list[Coupling] = []
+        self.pending: dict[int, Coupling] = {}
+        self.claim: set[int] = set()  # slaves with an active or armed MAPC (ERR 23)
+        self.last_dir: dict[int, int] = {}  # slave -> +1 / -1 of its last MAPC
         self._dirty = True
         self._bank: ProfileBank | None = None
         self._ended: list[Coupling] = []
+        self._started: list[Coupling] = []
+        self._mapc_rows = False
+        self._lockok = np.zeros(0, dtype=bool)
 
     # -- membership ---------------------------------------------------------------
     def _sync_out(self) -> None:
@@ -233,6 +290,7 @@ class PositionCamSet:
             c.k = float(self._k[i])
             c.last = float(self._last[i])
             c.ramp_t = float(self._rt[i])
+            c.peak = float(self._peak[i])
             c.v = float(self._v[i])
             c.a = float(self._a[i])
 
@@ -270,16 +328,20 @@ class PositionCamSet:
         self._ms = np.array([law.master_scaling for law in laws], dtype=f)
         self._mo = np.array([law.master_offset for law in laws], dtype=f)
         self._ss = np.array([law.slave_scaling for law in laws], dtype=f)
-        self._rel = np.array([1.0 if law.relative else 0.0 for law in laws], dtype=f)
+        self._padd = np.array([c.pass_add for c in rows], dtype=f)
         self._periodic = np.array([law.periodic for law in laws], dtype=bool)
+        self._persist = np.array([law.persistent for law in laws], dtype=bool)
+        self._any_persist = bool(self._persist.any())
+        self._mdir = np.array([law.master_direction for law in laws], dtype=np.intp)
+        self._any_mdir = bool(self._mdir.any())
         self._start = np.array([law.profile.start for law in laws], dtype=f)
         self._span = np.array([law.profile.span for law in laws], dtype=f)
-        self._pend = np.array([law.profile.p_end for law in laws], dtype=f)
         self._m0 = np.array([c.m0 for c in rows], dtype=f)
         self._base = np.array([c.base for c in rows], dtype=f)
         self._k0 = np.array([c.k0 for c in rows], dtype=f)
         self._k = np.array([c.k for c in rows], dtype=f)
         self._last = np.array([c.last for c in rows], dtype=f)
+        self._peak = np.array([c.peak for c in rows], dtype=f)
         self._rd = np.array([c.ramp_dist for c in rows], dtype=f)
         self._rt = np.array([c.ramp_t for c in rows], dtype=f)
         self._rtotal = np.array([c.ramp_total for c in rows], dtype=f)
@@ -288,7 +350,9 @@ class PositionCamSet:
         self._rdec = np.array([max(law.deceleration, 1e-300) for law in laws], dtype=f)
         self._ramping = np.array([c.state == CouplingState.RAMPING for c in rows], dtype=bool)
         self._any_ramp = bool(self._ramping.any())
-        self._watch = np.array([c.pending is not None for c in rows], dtype=bool)
+        self._mapc = np.array([c.mapc for c in rows], dtype=bool)
+        self._mapc_rows = bool(self._mapc.any())
+        self._lockok = np.ones(len(rows), dtype=bool)
         self._v = np.array([c.v for c in rows], dtype=f)
         self._a = np.array([c.a for c in rows], dtype=f)
         bank = self._bank
@@ -301,6 +365,7 @@ class PositionCamSet:
     # -- stepping -----------------------------------------------------------------
     def begin_update(self) -> None:
         self._ended = []
+        self._started = []
 
     def step(
         self,
@@ -310,6 +375,8 @@ class PositionCamSet:
         velocities: AxisState,
         events: Events,
     ) -> Contribution:
+        if self.armed:
+            self._check_locks(level_sel, positions)
         if not self.rows:
             return EMPTY
         if self._dirty:
@@ -323,6 +390,16 @@ class PositionCamSet:
         vm = np.where(cmd, velocities[1][master], velocities[0][master])
         ms = self._ms[sel]
         x = ms * (m - self._m0[sel]) + self._mo[sel]
+        following: np.ndarray | bool = True
+        if self._any_mdir:  # one-way cams keep the furthest X reached (they pause meanwhile)
+            mdir, peak = self._mdir[sel], self._peak[sel]
+            peak = np.where(np.isnan(peak), x, peak)
+            ratchet = np.where(mdir == 1, np.maximum(x, peak), np.minimum(x, peak))
+            held = np.where(mdir == 0, x, ratchet)
+            following = held == x
+            x = held
+            self._peak[sel] = x
+            vm = np.where(following, vm, 0.0)
         start, span = self._start[sel], self._span[sel]
         periodic = self._periodic[sel]
         k = np.where(periodic, np.floor((x - start) / span), 0.0)
@@ -334,7 +411,7 @@ class PositionCamSet:
             self._row_base[sel], self._row_first[sel], self._row_last[sel], local
         )
         ss = self._ss[sel]
-        y = ss * p + self._base[sel] + self._rel[sel] * (k - self._k0[sel]) * ss * self._pend[sel]
+        y = ss * p + self._base[sel] + (k - self._k0[sel]) * self._padd[sel]
         mv = ms * vm
         vel = np.where(outside, 0.0, ss * dp * mv)
         acc = np.where(outside, 0.0, ss * ddp * mv * mv)
@@ -355,9 +432,38 @@ class PositionCamSet:
         prev_k = self._k[sel].copy()
         passed = k != prev_k
         self._k[sel] = k
+        if self._mapc_rows:
+            self._lockok[sel] = ~outside & following
+        if self._any_persist:  # a persistent cam holds outside its range and stays
+            outside = outside & ~self._persist[sel]
         if self._any_ramp or outside.any() or passed.any():
-            self._events(sel, outside, passed, prev_k, k, x, events)
+            self._events(sel, outside, passed, prev_k, k, x, m, events)
         return Contribution(self._slave[sel], dpos, vel, acc)
+
+    def _check_locks(self, level_sel: LevelSel, positions: AxisState) -> None:
+        """Armed MAPC cams lock when the master crosses MasterLockPosition in the scheduled
+        direction; the distance counts from the lock position itself."""
+        for c in list(self.armed):
+            if level_sel is not None and level_sel[0][c.slave] != level_sel[1]:
+                continue
+            ref = 1 if c.reference == MasterReference.COMMAND else 0
+            m = float(positions[ref][c.master])
+            prev, c.prev_master = c.prev_master, m
+            assert c.lock is not None
+            schedule, lp = c.lock
+            if prev is None:
+                continue
+            fwd = prev < lp <= m
+            rev = prev > lp >= m
+            if (
+                (schedule == 2 and fwd)
+                or (schedule == 3 and rev)
+                or (schedule == 4 and (fwd or rev))
+            ):
+                self.armed.remove(c)
+                place(c, lp, float(positions[1][c.slave]))
+                c.lock = None
+                self._started.append(c)
 
     def _events(
         self,
@@ -367,9 +473,11 @@ class PositionCamSet:
         prev_k: np.ndarray,
         k: np.ndarray,
         x: np.ndarray,
+        m: np.ndarray,
         events: Events,
     ) -> None:
-        """The rare per-row changes: ramp finished, profile end passed, table switch."""
+        """The rare per-row changes: ramp finished, profile end passed, table switch,
+        hand-over to a pending MAPC."""
         rows = self._all[sel]
         for j in np.flatnonzero(passed | outside | self._ramping[sel]):
             r = int(rows[j])
@@ -378,42 +486,62 @@ class PositionCamSet:
                 self._ramping[r] = False
                 self._any_ramp = bool(self._ramping.any())
                 c.state = CouplingState.IN_SYNC
-            if passed[j]:
-                c.ends += int(abs(k[j] - prev_k[j])) or 1
-            if outside[j]:
-                c.ends += 1
+            if not (passed[j] or outside[j]):
+                continue
+            c.ends += int(abs(k[j] - prev_k[j])) if passed[j] else 1
+            p = c.law.profile
+            if outside[j]:  # the end the master left the range by
+                forward = bool(x[j] > p.end)
+                x_end = p.end if forward else p.start
+            else:  # the pass boundary crossed, forward or back
+                forward = bool(k[j] > prev_k[j])
+                x_end = p.start + max(k[j], prev_k[j]) * p.span
+            handover = c.mapc and c.slave in self.pending
+            if outside[j] or handover:
                 c.state = CouplingState.ENDED
                 self._v[r] = 0.0
                 self._a[r] = 0.0
                 self._ended.append(c)
-                events.append((c.handle, EventKind.COMPLETE, c.slave))
-            if (passed[j] or outside[j]) and c.pending is not None:
-                p = c.law.profile
-                if outside[j]:  # the end the master left the range by
-                    forward = bool(x[j] > p.end)
-                    x_end = p.end if forward else p.start
-                else:  # the pass boundary crossed, forward or back
-                    forward = bool(k[j] > prev_k[j])
-                    x_end = p.start + max(k[j], prev_k[j]) * p.span
+                kind = EventKind.COMPLETE if outside[j] else EventKind.ENDED
+                events.append((c.handle, kind, c.slave))
+            if c.pending is not None:
                 self._switch(r, c, float(x_end), bool(outside[j]), forward, events)
+            elif handover:
+                self._hand_over(r, c, float(x_end), forward, events)
+
+    def _end_point(self, r: int, c: Coupling, x_end: float, forward: bool) -> tuple[float, float]:
+        """Master position and slave value of the law at the end of the pass just left
+        (forward: the profile's end, backward: its start)."""
+        law = c.law
+        m_end = (x_end - law.master_offset) / law.master_scaling + float(self._m0[r])
+        p = law.profile
+        boundary = round((x_end - p.start) / p.span) if law.periodic else 0
+        pass_left = boundary - 1 if forward and law.periodic else boundary
+        pv = p.p_end if forward else p.p_start
+        y_end = law.slave_scaling * pv + (pass_left - float(self._k0[r])) * c.pass_add
+        return m_end, y_end + float(self._base[r])
+
+    def _hand_over(self, r: int, c: Coupling, x_end: float, forward: bool, ev: Events) -> None:
+        """A pending MAPC starts where the active one ended, from the slave value there."""
+        new = self.pending.pop(c.slave)
+        m_end, y_end = self._end_point(r, c, x_end, forward)
+        place(new, m_end, y_end)
+        # the new cam takes over this update's position: its next step moves on from here
+        y_now = float(self._last[r])
+        new.last = y_now
+        new.base += y_now - y_end
+        ev.append((new.handle, EventKind.PENDING_STARTED, new.slave))
+        ev.append((new.handle, EventKind.IN_PROCESS, new.slave))
+        self._started.append(new)
 
     def _switch(
         self, r: int, c: Coupling, x_end: float, ended: bool, forward: bool, events: Events
     ) -> None:
         """A new table selected while coupled takes over at the profile end: its master zero
         is the master position at that end, its relative base the slave position there."""
-        law, new = c.law, c.pending
+        new = c.pending
         assert new is not None
-        m0, ms, mo = float(self._m0[r]), law.master_scaling, law.master_offset
-        m_end = (x_end - mo) / ms + m0
-        # the slave value at the end of the pass just left (forward: its end, back: its start)
-        p = law.profile
-        boundary = round((x_end - p.start) / p.span) if law.periodic else 0
-        pass_left = boundary - 1 if forward and law.periodic else boundary
-        pv = p.p_end if forward else p.p_start
-        rel = 1.0 if law.relative else 0.0
-        y_end = law.slave_scaling * (pv + rel * (pass_left - float(self._k0[r])) * p.p_end)
-        y_end += float(self._base[r])
+        m_end, y_end = self._end_point(r, c, x_end, forward)
         c.pending = None
         if ended:  # the coupling goes on with the new table: no end after all
             self._ended = [e for e in self._ended if e is not c]
@@ -430,9 +558,12 @@ class PositionCamSet:
         self._dirty = True
 
     def end_update(self, actual: np.ndarray, events: Events) -> None:
-        if self._ended:
+        if self._ended or self._started:
             self.remove(self._ended)
+            for c in self._started:
+                self.add(c)
             self._ended = []
+            self._started = []
 
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         if self._dirty:
@@ -442,7 +573,7 @@ class PositionCamSet:
         return np.bincount(self._slave, self._v, n), np.bincount(self._slave, self._a, n)
 
     def edges(self) -> list[tuple[int, int]]:
-        return [(c.slave, c.master) for c in self.rows]
+        return [(c.slave, c.master) for c in self.rows + self.armed]
 
     def shift_master(self, axis: int, delta: float) -> None:
         """A master counted from its coupling position keeps counting travel (MRP, MAH)."""
@@ -451,12 +582,35 @@ class PositionCamSet:
             if c.master == axis and not c.law.master_absolute:
                 c.m0 += delta
                 self._dirty = True
+        for c in self.armed:
+            if c.master == axis and c.prev_master is not None:
+                c.prev_master += delta
 
     def status(self, n: int) -> dict[str, np.ndarray]:
-        return {}
+        """PositionCamStatus (a MAPC active or armed), PositionCamLockStatus (following the
+        master inside the profile), PositionCamPendingStatus; MC_CamIn shows none."""
+        if self._dirty:
+            self._rebuild()
+        active = np.zeros(n, dtype=bool)
+        locked = np.zeros(n, dtype=bool)
+        pending = np.zeros(n, dtype=bool)
+        if self._mapc_rows:
+            active[self._slave[self._mapc]] = True
+            locked[self._slave[self._mapc & self._lockok]] = True
+        for c in self.armed:
+            active[c.slave] = True
+        pending[list(self.pending)] = True
+        # asked at the end of an update: the claim on a slave is exactly its MAPC now
+        self.claim = {c.slave for c in self.rows if c.mapc} | {c.slave for c in self.armed}
+        return {
+            "PositionCamStatus": active,
+            "PositionCamLockStatus": locked,
+            "PositionCamPendingStatus": pending,
+        }
 
     def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
-        """A stop of all motion or of position cams, a merge and a kill take the slave."""
+        """A stop of all motion or of position cams, a merge and a kill take the slave
+        (MAPC cams armed or pending on it end too)."""
         if reason not in (Ending.KILL, Ending.MERGE_ALL, StopType.ALL, StopType.POSITION_CAM):
             return 0.0, False
         gone = self.on_axis(axis)
@@ -467,7 +621,14 @@ class PositionCamSet:
             events.append((c.handle, EventKind.ENDED, axis))
         if gone:
             self.remove(gone)
-        return v, bool(gone)
+        waiting = [c for c in self.armed if c.slave == axis]
+        if axis in self.pending:
+            waiting.append(self.pending.pop(axis))
+        for c in waiting:
+            c.state = CouplingState.ABORTED
+            events.append((c.handle, EventKind.ENDED, axis))
+        self.armed = [c for c in self.armed if c.slave != axis]
+        return v, bool(gone or waiting)
 
     def busy(self, axis: int) -> bool:
         return bool(self.on_axis(axis))
@@ -476,12 +637,16 @@ class PositionCamSet:
         return set()
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
-        pass
+        """MAS All / Position Cam (MGS: None) frees the slave for an immediate MAPC at once."""
+        if axis is None:
+            self.claim.clear()
+        elif stop_type in (StopType.ALL, StopType.POSITION_CAM):
+            self.claim.discard(axis)
 
 
 def place(c: Coupling, m: float, s: float) -> CamInError:
     """Fix a coupling's reference at master position m and slave position s (the coupling
-    update, or a table switch): master zero, relative base, pass count and ramp-in."""
+    update, a lock, a table switch): master zero, slave base, pass count and ramp-in."""
     law = c.law
     p = law.profile
     c.m0 = 0.0 if law.master_absolute else m
@@ -490,7 +655,13 @@ def place(c: Coupling, m: float, s: float) -> CamInError:
         return CamInError.MASTER_OUT_OF_RANGE
     c.k0 = math.floor((x - p.start) / p.span) if law.periodic else 0.0
     c.k = c.k0
-    c.base = law.slave_offset + (s if law.relative else 0.0)
+    c.pass_add = pass_add(law)
+    c.peak = math.nan
+    if law.incremental:  # MAPC: the slave moves on from where it is
+        local = x - c.k0 * p.span if law.periodic else x
+        c.base = s - law.slave_scaling * float(p.evaluate(local)[0])
+    else:
+        c.base = law.slave_offset + (s if law.relative else 0.0)
     y, _, _, _ = evaluate_law(law, m, c.m0, c.base, c.k0)
     c.last = s
     c.ramp_t = 0.0
@@ -560,3 +731,102 @@ def switch_table(cams: PositionCamSet, c: Coupling, law: CamLaw) -> CamInError:
         cams._sync_out()
         cams._dirty = True
     return err
+
+
+def start_mapc(
+    group: MotionGroup,
+    cams: PositionCamSet,
+    slave: int,
+    master: int,
+    profile: CamProfile | None,
+    direction: int = CamDirection.SAME,
+    slave_scaling: float = 1.0,
+    master_scaling: float = 1.0,
+    execution_mode: int = PositionCamMode.ONCE,
+    execution_schedule: int = PositionCamSchedule.IMMEDIATE,
+    master_lock_position: float = 0.0,
+    cam_lock_position: float = 0.0,
+    reference: int = MasterReference.ACTUAL,
+    master_direction: int = 0,
+) -> StartResult:
+    """MAPC (decision 0128): validates at once (ERR/EXERR with the faceplate indices) and
+    starts at the next update, locks when the master crosses MasterLockPosition, or waits
+    behind the slave's active position cam (Pending)."""
+    if slave == master:
+        return bad_operand(1)
+    if direction not in (0, 1, 2, 3):
+        return bad_operand(3)
+    if profile is None:
+        return StartResult(error=MotionError.CAM_PROFILE_NOT_CALCULATED)
+    if not math.isfinite(slave_scaling):
+        return bad_operand(5)
+    if not (math.isfinite(master_scaling) and master_scaling > 0.0):
+        return bad_operand(6)
+    if execution_mode not in PositionCamMode.__members__.values():
+        return bad_operand(7)
+    if execution_schedule not in PositionCamSchedule.__members__.values():
+        return bad_operand(8)
+    if not math.isfinite(master_lock_position):
+        return bad_operand(9)
+    if not (math.isfinite(cam_lock_position) and profile.start <= cam_lock_position <= profile.end):
+        return bad_operand(10)
+    if reference not in (0, 1):
+        return bad_operand(11)
+    if master_direction not in (0, 1, 2):
+        return bad_operand(12)
+    pending = execution_schedule == PositionCamSchedule.PENDING
+    if not pending and slave in cams.claim:
+        return StartResult(error=MotionError.ILLEGAL_DYNAMIC_CHANGE)
+    if group.shutdown[slave]:
+        return StartResult(error=MotionError.SHUTDOWN_STATE)
+    if not group.servo_on[slave]:
+        return StartResult(error=MotionError.SERVO_OFF_STATE)
+    last = cams.last_dir.get(slave, 0)
+    sign = {
+        CamDirection.SAME: 1,
+        CamDirection.OPPOSITE: -1,
+        CamDirection.REVERSE: -last if last else -1,
+        CamDirection.UNCHANGED: last if last else 1,
+    }[CamDirection(direction)]
+    cams.last_dir[slave] = sign
+    law = CamLaw(
+        profile,
+        periodic=execution_mode == PositionCamMode.CONTINUOUS,
+        master_absolute=False,
+        master_scaling=1.0 / master_scaling,  # MasterScaling stretches the profile's master axis
+        master_offset=cam_lock_position,
+        slave_scaling=sign * slave_scaling,
+        incremental=True,
+        persistent=execution_mode == PositionCamMode.PERSISTENT,
+        master_direction=master_direction,
+    )
+    h = group.new_handle()
+    ref = group.effective_reference(master, MasterReference(reference))
+    c = Coupling(h, slave, master, ref, law, mapc=True)
+    if pending:
+
+        def apply_pending(ev: Events) -> None:
+            old = cams.pending.pop(slave, None)
+            if old is not None:  # a later pending cam replaces the queued one
+                ev.append((old.handle, EventKind.ENDED, slave))
+            cams.pending[slave] = c
+
+        group.after_update(apply_pending)
+        return StartResult(handle=h)
+    cams.claim.add(slave)
+
+    def apply(ev: Events) -> None:
+        pos = group.command_position if ref == MasterReference.COMMAND else group.actual_position
+        if execution_schedule == PositionCamSchedule.IMMEDIATE:
+            place(c, float(pos[master]), float(group.command_position[slave]))
+            cams.add(c)
+        else:
+            c.state = CouplingState.ARMED
+            c.lock = (int(execution_schedule), float(master_lock_position))
+            c.prev_master = float(pos[master])
+            cams.armed.append(c)
+        group.levels_changed()
+        ev.append((h, EventKind.IN_PROCESS, slave))
+
+    group.after_update(apply)
+    return StartResult(handle=h)
