@@ -394,7 +394,9 @@ class PositionCamSet:
         if self._any_mdir:  # one-way cams keep the furthest X reached (they pause meanwhile)
             mdir, peak = self._mdir[sel], self._peak[sel]
             peak = np.where(np.isnan(peak), x, peak)
-            ratchet = np.where(mdir == 1, np.maximum(x, peak), np.minimum(x, peak))
+            ratchet = np.where(
+                mdir == CamMasterDirection.FORWARD_ONLY, np.maximum(x, peak), np.minimum(x, peak)
+            )
             held = np.where(mdir == 0, x, ratchet)
             following = held == x
             x = held
@@ -772,7 +774,7 @@ def start_mapc(
         return bad_operand(10)
     if reference not in (0, 1):
         return bad_operand(11)
-    if master_direction not in (0, 1, 2):
+    if master_direction not in CamMasterDirection.__members__.values():
         return bad_operand(12)
     pending = execution_schedule == PositionCamSchedule.PENDING
     if not pending and slave in cams.claim:

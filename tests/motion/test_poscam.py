@@ -241,3 +241,31 @@ def test_parameter_errors():
     assert validate_law(ramp) == CamInError.INVALID_PARAMETER  # Deceleration 0
     g, m, s = setup()
     assert g.start_position_cam(s, s, CamLaw(LIN)).error == CamInError.SAME_AXIS
+
+
+def test_one_cam_core_three_front_ends():
+    """The same cam (slave 0 at 0, cubic) through a master-driven MATC (MDAC), MAPC and
+    MC_CamIn (absolute), all coupled at the same update with the master at rest at 0 and then
+    moving 0 -> 25 (beyond the cam's end): the three slaves follow one trajectory."""
+    from interpreter.motion import InstructionMode, MotionType, MoveType
+
+    cam = calculate_cam_profile([0.0, 4.0, 12.0, 20.0], [0.0, 3.0, 1.0, 6.0], [1, 1, 1, 1])
+    g = MotionGroup(CUP)
+    m = g.add_axis("m")
+    s1, s2, s3 = g.add_axis("s1"), g.add_axis("s2"), g.add_axis("s3")
+    assert g.assign_master(s1, m, MotionType.TIME_CAM).ok
+    assert g.start_time_cam(s1, cam, instruction_mode=InstructionMode.MASTER_DRIVEN).ok
+    assert g.start_mapc(s2, m, cam).ok
+    c = g.start_position_cam(s3, m, CamLaw(cam))
+    g.update()  # all three couple here, master at rest at 0
+    assert g.start_move(m, MoveType.ABSOLUTE, 25.0, 10.0, 20.0, 20.0).ok
+    trail = []
+    for _ in range(4000):
+        g.update()
+        trail.append(g.command_position[[s1, s2, s3]].copy())
+    t = np.array(trail)
+    assert np.abs(t[:, 0] - t[:, 1]).max() < 1e-9
+    assert np.abs(t[:, 0] - t[:, 2]).max() < 1e-9
+    # and the trajectory is the cam of the master (the end value 6 once past 20)
+    assert t[-1, 0] == pytest.approx(6.0, abs=1e-12)
+    assert c.state == CouplingState.ENDED
