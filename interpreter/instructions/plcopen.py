@@ -35,6 +35,13 @@ from .registry import implements
 
 _SEL = struct_type("MC_CAMTABLESELECT").index
 _CIN = struct_type("MC_CAMIN").index
+_SEL_EXECUTE = _SEL["EXECUTE"]
+_CIN_EXECUTE, _CIN_TABLE = _CIN["EXECUTE"], _CIN["CAMTABLEID"]
+# the MC_CamIn outputs in member order (the catalog declares them together): one slice store
+_CIN_OUT = ("INSYNC", "BUSY", "COMMANDABORTED", "ERROR", "ERRORID", "ENDOFPROFILE")
+_OUT = slice(_CIN["INSYNC"], _CIN["ENDOFPROFILE"] + 1)
+assert [_CIN[m] for m in _CIN_OUT] == list(range(_OUT.start, _OUT.stop)), "MC_CamIn output order"
+_IDLE = (0, 0, 0, 0, 0, 0)
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,6 +64,7 @@ class _CamInState:
     error: CamInError = CamInError.NONE  # an error found at execution (no coupling)
     ends_seen: int = 0
     shown: bool = False  # a terminal state was shown in a call with Execute FALSE
+    written: tuple[int, ...] = _IDLE  # the outputs last stored (stored again only on change)
 
 
 @dataclass(slots=True)
@@ -69,11 +77,17 @@ class _Blocks:
     camins: dict[int, _CamInState] = field(default_factory=dict)
 
 
+_last: list = [None, None]  # (runtime, its blocks): every call of a scan asks for the same
+
+
 def _blocks(rt: MotionRuntime) -> _Blocks:
+    if _last[0] is rt:
+        return _last[1]  # type: ignore[no-any-return]
     b = rt.extensions.get("plcopen")
     if b is None:
         b = rt.extensions["plcopen"] = _Blocks()
     assert isinstance(b, _Blocks)
+    _last[0], _last[1] = rt, b
     return b
 
 
@@ -114,16 +128,17 @@ def mc_cam_table_select(ctx: ExecContext, rung: bool, inst: list, *pairs: object
     rt = runtime(ctx)
     b = _blocks(rt)
     ix = _SEL
-    execute = bool(inst[ix["EXECUTE"]])
-    prev = b.selects.get(id(inst), False)
-    b.selects[id(inst)] = execute
+    execute = bool(inst[_SEL_EXECUTE])
+    key = id(inst)
+    prev = b.selects.get(key, False)
+    if prev and execute:
+        return  # outputs stay as they are while Execute stays TRUE
+    b.selects[key] = execute
     if not execute:  # the result was shown while Execute was TRUE (it completes at once)
         for name in ("DONE", "BUSY", "ERROR"):
             inst[ix[name]] = 0
         inst[ix["ERRORID"]] = 0
         return
-    if prev:
-        return  # outputs stay as they are while Execute stays TRUE
     refs = _refs(pairs)
     axes = _axes(rt, refs, ix)
     profile = _table_profile(refs.get(ix["CAMTABLE"])) if not isinstance(axes, CamInError) else axes
@@ -191,18 +206,17 @@ def _start(rt: MotionRuntime, b: _Blocks, st: _CamInState, inst: list, refs: dic
 def mc_cam_in(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
     rt = runtime(ctx)
     b = _blocks(rt)
-    ix = _CIN
     st = b.camins.get(id(inst))
     if st is None:
         st = b.camins[id(inst)] = _CamInState()
-    execute = bool(inst[ix["EXECUTE"]])
+    execute = bool(inst[_CIN_EXECUTE])
     rising = execute and not st.execute
     st.execute = execute
     if rising:
         _start(rt, b, st, inst, _refs(pairs))
     c = st.coupling
-    if c is not None and c.busy and not rising:
-        tid = int(inst[ix["CAMTABLEID"]])
+    if c is not None and not rising and inst[_CIN_TABLE] != st.table and c.busy:
+        tid = int(inst[_CIN_TABLE])
         sel = b.tables.get(tid)
         if tid != st.table and sel is not None and sel.slave.index == c.slave:
             # another table selected while coupled: it takes over at the next profile end
@@ -215,26 +229,28 @@ def mc_cam_in(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
 
 
 def _outputs(st: _CamInState, inst: list, execute: bool) -> None:
-    ix = _CIN
     c = st.coupling
-    state = CouplingState.ERROR if c is None else c.state
-    error = st.error if c is None else c.error
-    if c is None and error == CamInError.NONE:
-        state = CouplingState.ENDED  # never started: all outputs FALSE
-    ends = 0 if c is None else c.ends
-    eop = ends > st.ends_seen
+    if c is not None:
+        state, error, ends = c.state, c.error, c.ends
+    else:  # not started (all FALSE) or refused at execution
+        error = st.error
+        state = CouplingState.ERROR if error != CamInError.NONE else CouplingState.ENDED
+        ends = st.ends_seen
+    eop = int(ends > st.ends_seen)
     st.ends_seen = ends
-    terminal = state in (CouplingState.ENDED, CouplingState.ABORTED, CouplingState.ERROR)
-    if terminal and not execute:
-        if st.shown:  # shown once with Execute FALSE: back to idle
+    if state >= CouplingState.ENDED and state != CouplingState.ARMED and not execute:
+        if st.shown:  # a terminal state shown once with Execute FALSE: back to idle
             state, error = CouplingState.ENDED, CamInError.NONE
             st.coupling, st.error = None, CamInError.NONE
         st.shown = True
-    inst[ix["BUSY"]] = int(
-        state in (CouplingState.STARTING, CouplingState.RAMPING, CouplingState.IN_SYNC)
+    out = (
+        int(state == CouplingState.IN_SYNC),
+        int(state <= CouplingState.IN_SYNC),  # starting, ramping or in sync: busy
+        int(state == CouplingState.ABORTED),
+        int(state == CouplingState.ERROR),
+        int(error) if state == CouplingState.ERROR else 0,
+        eop,
     )
-    inst[ix["INSYNC"]] = int(state == CouplingState.IN_SYNC)
-    inst[ix["COMMANDABORTED"]] = int(state == CouplingState.ABORTED)
-    inst[ix["ERROR"]] = int(state == CouplingState.ERROR and error != CamInError.NONE)
-    inst[ix["ERRORID"]] = int(error) if state == CouplingState.ERROR else 0
-    inst[ix["ENDOFPROFILE"]] = int(eop)
+    if out != st.written:
+        inst[_OUT] = out
+        st.written = out

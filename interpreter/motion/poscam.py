@@ -38,7 +38,6 @@ from interpreter.motion.process import (
     EndReason,
     Events,
     LevelSel,
-    rows_at_level,
 )
 
 if TYPE_CHECKING:
@@ -263,6 +262,9 @@ def pass_add(law: CamLaw) -> float:
     return law.slave_scaling * law.profile.p_end if law.relative else 0.0
 
 
+_STATUS_NAMES = ("PositionCamStatus", "PositionCamLockStatus", "PositionCamPendingStatus")
+
+
 class PositionCamSet:
     """Running couplings in struct-of-arrays form; rows are rebuilt when the set changes.
     MAPC cams waiting for their lock position (`armed`) and queued behind an active one
@@ -280,6 +282,7 @@ class PositionCamSet:
         self._started: list[Coupling] = []
         self._mapc_rows = False
         self._lockok = np.zeros(0, dtype=bool)
+        self._idle_status: dict[str, np.ndarray] | None = None
 
     # -- membership ---------------------------------------------------------------
     def _sync_out(self) -> None:
@@ -360,6 +363,12 @@ class PositionCamSet:
         self._row_first = bank.first_seg[prof]
         self._row_last = bank.last_seg[prof]
         self._all = np.arange(len(rows))
+        self._xoff = self._mo - self._ms * self._m0
+        self._all_cmd = bool(self._cmd.all())
+        self._all_periodic = bool(self._periodic.all())
+        self._no_row = np.zeros(len(rows), dtype=bool)
+        self._any_padd = bool(self._padd.any())
+        self._levels: np.ndarray | None = None  # the rows of each level: see _select
         self._dirty = False
 
     # -- stepping -----------------------------------------------------------------
@@ -381,15 +390,19 @@ class PositionCamSet:
             return EMPTY
         if self._dirty:
             self._rebuild()
-        sel = rows_at_level(level_sel, self._slave)
-        if isinstance(sel, np.ndarray) and len(sel) == 0:
+        sel = self._select(level_sel)
+        if sel is None:
             return EMPTY
         master = self._master[sel]
-        cmd = self._cmd[sel]
-        m = np.where(cmd, positions[1][master], positions[0][master])
-        vm = np.where(cmd, velocities[1][master], velocities[0][master])
+        if self._all_cmd:  # the usual case: every master followed by command position
+            m = positions[1][master]
+            vm = velocities[1][master]
+        else:
+            cmd = self._cmd[sel]
+            m = np.where(cmd, positions[1][master], positions[0][master])
+            vm = np.where(cmd, velocities[1][master], velocities[0][master])
         ms = self._ms[sel]
-        x = ms * (m - self._m0[sel]) + self._mo[sel]
+        x = ms * m + self._xoff[sel]  # MasterScaling * (master - m0) + MasterOffset
         following: np.ndarray | bool = True
         if self._any_mdir:  # one-way cams keep the furthest X reached (they pause meanwhile)
             mdir, peak = self._mdir[sel], self._peak[sel]
@@ -403,20 +416,30 @@ class PositionCamSet:
             self._peak[sel] = x
             vm = np.where(following, vm, 0.0)
         start, span = self._start[sel], self._span[sel]
-        periodic = self._periodic[sel]
-        k = np.where(periodic, np.floor((x - start) / span), 0.0)
-        local = x - start - k * span  # 0..span inside the range
-        outside = ~periodic & ((local < 0.0) | (local > span))
+        if self._all_periodic:
+            k = np.floor((x - start) / span)
+            local = x - start - k * span  # 0..span
+            outside = self._no_row[sel]
+        else:
+            periodic = self._periodic[sel]
+            k = np.where(periodic, np.floor((x - start) / span), 0.0)
+            local = x - start - k * span  # 0..span inside the range
+            outside = ~periodic & ((local < 0.0) | (local > span))
         local = np.minimum(np.maximum(local, 0.0), span)
         assert self._bank is not None
         p, dp, ddp = self._bank.evaluate_rows(
             self._row_base[sel], self._row_first[sel], self._row_last[sel], local
         )
         ss = self._ss[sel]
-        y = ss * p + self._base[sel] + (k - self._k0[sel]) * self._padd[sel]
+        y = ss * p + self._base[sel]
+        if self._any_padd:
+            y += (k - self._k0[sel]) * self._padd[sel]
         mv = ms * vm
-        vel = np.where(outside, 0.0, ss * dp * mv)
-        acc = np.where(outside, 0.0, ss * ddp * mv * mv)
+        vel = ss * dp * mv
+        acc = ss * ddp * mv * mv
+        if not self._all_periodic:
+            vel = np.where(outside, 0.0, vel)
+            acc = np.where(outside, 0.0, acc)
         if self._any_ramp:
             ramping = self._ramping[sel]
             t = self._rt[sel] + np.where(ramping, cup, 0.0)
@@ -431,16 +454,34 @@ class PositionCamSet:
         self._last[sel] = y
         self._v[sel] = vel
         self._a[sel] = acc
-        prev_k = self._k[sel].copy()
+        prev_k = self._k[sel]
         passed = k != prev_k
-        self._k[sel] = k
         if self._mapc_rows:
             self._lockok[sel] = ~outside & following
         if self._any_persist:  # a persistent cam holds outside its range and stays
             outside = outside & ~self._persist[sel]
-        if self._any_ramp or outside.any() or passed.any():
+        if self._any_ramp or passed.any() or outside.any():
+            prev_k = prev_k.copy()
+            self._k[sel] = k
             self._events(sel, outside, passed, prev_k, k, x, m, events)
         return Contribution(self._slave[sel], dpos, vel, acc)
+
+    def _select(self, level_sel: LevelSel) -> slice | np.ndarray | None:
+        """The rows to step at this level (None: none); the answer per level is kept while
+        the group's level array and the rows are unchanged (the level loop asks every set
+        at every level of every update)."""
+        if level_sel is None:
+            return slice(None)
+        levels, lvl = level_sel
+        if self._levels is not levels:  # the group computes a new array when levels change
+            self._levels = levels
+            self._row_levels = levels[self._slave]
+            self._by_level: dict[int, slice | np.ndarray | None] = {}
+        if lvl not in self._by_level:
+            rows = np.flatnonzero(self._row_levels == lvl)
+            n = len(rows)
+            self._by_level[lvl] = None if n == 0 else slice(None) if n == len(self.rows) else rows
+        return self._by_level[lvl]
 
     def _check_locks(self, level_sel: LevelSel, positions: AxisState) -> None:
         """Armed MAPC cams lock when the master crosses MasterLockPosition in the scheduled
@@ -593,6 +634,12 @@ class PositionCamSet:
         master inside the profile), PositionCamPendingStatus; MC_CamIn shows none."""
         if self._dirty:
             self._rebuild()
+        if not (self._mapc_rows or self.armed or self.pending):
+            self.claim.clear()
+            if self._idle_status is None or len(self._idle_status["PositionCamStatus"]) != n:
+                idle = np.zeros(n, dtype=bool)  # shared, read-only: nothing to show
+                self._idle_status = {name: idle for name in _STATUS_NAMES}
+            return self._idle_status
         active = np.zeros(n, dtype=bool)
         locked = np.zeros(n, dtype=bool)
         pending = np.zeros(n, dtype=bool)
