@@ -134,6 +134,7 @@ class MotionGroup:
         self._alpha = np.zeros(0)
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
+        self._level_rows: list[np.ndarray] = []  # axes of each level (from _compute_levels)
         self._levels_dirty = False
         self.status: dict[str, np.ndarray] = {}
         # moves, jogs and stops; ending one goes through moves.end_gen (MGS bookkeeping)
@@ -213,6 +214,7 @@ class MotionGroup:
         self._alpha = lag_alpha(self.tau, self.cup)
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
+        self._levels_dirty = True
         for name_ in STATUS_BITS:
             self.status[name_] = np.zeros(len(self.axes), dtype=bool)
         self.status["ServoActionStatus"] = self.servo_on.copy()
@@ -489,6 +491,7 @@ class MotionGroup:
                 break
         self._level = level
         self._max_level = int(level.max()) if n else 0
+        self._level_rows = [np.flatnonzero(level == lv) for lv in range(self._max_level + 1)]
         self._levels_dirty = False
 
     def update(self) -> list[MotionEvent]:
@@ -514,8 +517,13 @@ class MotionGroup:
             sel = None if single else (self._level, lvl)
             parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
             parts = [c for c in parts if len(c.axis)]
-            idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
-            if parts:
+            idx: np.ndarray | slice = slice(None) if single else self._level_rows[lvl]
+            if len(parts) == 1:  # one kind of motion at this level (e.g. only cams)
+                c = parts[0]
+                self.command_position += np.bincount(c.axis, c.dpos, n)
+                self.command_velocity[idx] = np.bincount(c.axis, c.vel, n)[idx]
+                self.command_acceleration[idx] = np.bincount(c.axis, c.acc, n)[idx]
+            elif parts:
                 axes = np.concatenate([c.axis for c in parts])
                 dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
                 vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)

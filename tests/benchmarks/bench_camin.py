@@ -6,6 +6,7 @@ seconds). Prints the real-time factor (simulated / wall seconds) of
 - the core alone: MotionGroup.update with the master jogging and 32 position cam couplings;
 - the whole program through the Controller: a 1 ms coarse update with 1 ms scans (every scan
   calls the 32 MC_CamIn blocks, as a PLCopen program does) and with 4 ms scans.
+Each figure is given against wall time and against the CPU time of this process.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ X = np.linspace(0.0, 360.0, 13)
 Y = 50.0 * np.sin(np.radians(X)) ** 2  # a rise-and-return cam per master revolution
 
 
-def core_factor(sim_seconds: float) -> float:
+def core_factor(sim_seconds: float) -> tuple[float, float]:
     g = MotionGroup(CUP)
     m = g.add_axis("master")
     profile = calculate_cam_profile(X, Y, [1] * len(X))
@@ -39,12 +40,12 @@ def core_factor(sim_seconds: float) -> float:
     g.update()
     assert g.start_jog(m, 0, 360.0, 1000.0, 1000.0).ok
     updates = round(sim_seconds / CUP)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for _ in range(updates):
         g.update()
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     assert len(g.position_cams.rows) == SLAVES
-    return sim_seconds / wall
+    return sim_seconds / wall, sim_seconds / cpu
 
 
 def program() -> str:
@@ -80,7 +81,7 @@ END_IF;
 """
 
 
-def program_factor(sim_seconds: float, scan_ms: float) -> float:
+def program_factor(sim_seconds: float, scan_ms: float) -> tuple[float, float]:
     from interpreter.runtime.controller import Controller
     from interpreter.runtime.loader import load
 
@@ -90,21 +91,24 @@ def program_factor(sim_seconds: float, scan_ms: float) -> float:
         ctl = Controller(load([p]), scan_period_ms=scan_ms, coarse_update_ms=CUP * 1e3)
     ctl.prescan()
     scans = round(sim_seconds * 1000.0 / scan_ms)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for _ in range(scans):
         assert ctl.scan()
-    return sim_seconds / (time.perf_counter() - t0)
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return sim_seconds / wall, sim_seconds / cpu
 
 
-def main(sim_seconds: float = 60.0) -> dict[str, float]:
+def main(sim_seconds: float = 60.0) -> dict[str, tuple[float, float]]:
     r = {
         "core": core_factor(sim_seconds),
         "program_1ms_scans": program_factor(sim_seconds, 1.0),
         "program_4ms_scans": program_factor(sim_seconds, 4.0),
     }
     print(f"{SLAVES} MC_CamIn slaves, {sim_seconds:.0f} s simulated at {CUP * 1e3:.0f} ms:")
-    for k, v in r.items():
-        print(f"  {k:20s} {v:6.1f}x real time ({'OK' if v >= 10 else 'TOO SLOW'}, goal 20x)")
+    print("  (real-time factor = simulated s / wall s, and / CPU s of this process: on a busy")
+    print("  machine the CPU figure is the one that does not depend on the other processes)")
+    for k, (wall, cpu) in r.items():
+        print(f"  {k:20s} wall {wall:6.1f}x   cpu {cpu:6.1f}x   (goal 20x, minimum 10x)")
     return r
 
 
