@@ -266,3 +266,17 @@ def test_immediate_while_active_is_err_23(mp: Runner):
         ARGS,
     )
     assert tr.rows[-1][1:] == [1.0, 23.0]
+
+
+def test_mgs_ends_the_cam_without_pc(mp: Runner):
+    body = "IF k = 300 THEN MGS(grp, mg, programmed); END_IF;"
+    src = program(
+        "same, prof[0], 1.0, 1.0, continuous, immediate, 0.0, 0.0, command, bidirectional", body
+    )
+    src = src.replace(
+        "  k : DINT;", "  k : DINT;\n  grp : MOTION_GROUP;\n  mg : MOTION_INSTRUCTION;"
+    )
+    tr = mp.trace(src, WATCH, 600, ARGS)
+    assert all(r["mp.IP"] == 1 and r["S.PositionCamStatus"] == 1 for r in rows(tr, 0.01, 0.3))
+    held = list(rows(tr, 0.302))
+    assert all(r["mp.IP"] == 0 and r["mp.PC"] == 0 and r["S.PositionCamStatus"] == 0 for r in held)
