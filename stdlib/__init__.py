@@ -139,6 +139,10 @@ class Member:
     hidden: bool = False
     readonly: bool = False
     default: object = None
+    # function-block parameters (the PLCopen blocks, SPEC 3.1): the enumeration an input
+    # takes by its words, and the inputs every named-parameter call must give
+    enum: str | None = None
+    required: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -317,6 +321,8 @@ def catalog() -> Catalog:
                     hidden=bool(m.get("hidden", False)),
                     readonly=bool(m.get("readonly", False)),
                     default=m.get("default"),
+                    enum=m.get("enum"),
+                    required=bool(m.get("required", False)),
                 )
                 for m in raw.get("members", [])
             )
@@ -342,6 +348,10 @@ def catalog() -> Catalog:
                 raise CatalogError(f"{ins.name}.{op.name}: unknown enum {op.enum}")
         if ins.unconnected is not None:
             _check_unconnected(cat, ins)
+    for td in cat.types.values():
+        for m in td.members:
+            if m.enum is not None and m.enum not in cat.enums:
+                raise CatalogError(f"{td.name}.{m.name}: unknown enum {m.enum}")
     return cat
 
 

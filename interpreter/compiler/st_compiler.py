@@ -333,14 +333,29 @@ class RoutineCompiler:
         self.site_span = saved
 
     def fb_call(self, c: n.Call, fb: FBCall) -> None:
+        """Elementary inputs are stored into the instance; axis and CAM-array inputs are
+        references: the implementation gets them after the instance as (member index,
+        value) pairs (an axis's storage list, an ArrayRef for an array)."""
+        refs: list[tuple[int, DataType, n.Expr]] = []
         for idx, mt, value in fb.inputs:
+            if not isinstance(mt, Elementary):
+                refs.append((idx, mt, value))
+                continue
             self.place(fb.instance)
             self.emit(Op.MEMBER, idx)
             self.value(value, mt)
             self.emit(Op.STORE, mt, value.span)
         self.place(fb.instance)
         self.emit(Op.VALUE)
-        self.emit(Op.CALL, (fb.instruction.key, 1, True), c.span)
+        for idx, _mt, value in refs:
+            self.emit(Op.CONST, (idx, None))
+            t = self.type_of(value)
+            self.place(value)
+            if isinstance(t, ArrayType):
+                self.emit(Op.AREF, (t.elem, t.dims, False))
+            else:
+                self.emit(Op.VALUE)
+        self.emit(Op.CALL, (fb.instruction.key, 1 + 2 * len(refs), True), c.span)
         for idx, mt, target in fb.outputs:
             tt = self.type_of(target)
             self.place(target)

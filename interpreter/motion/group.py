@@ -64,6 +64,13 @@ from interpreter.motion.path_moves import (
     stop_path,
 )
 from interpreter.motion.paths import PathSet
+from interpreter.motion.poscam import (
+    CamLaw,
+    Coupling,
+    PositionCamSet,
+    start_mapc,
+    start_position_cam,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
 from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
@@ -147,6 +154,7 @@ class MotionGroup:
         self._alpha = np.zeros(0)
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
+        self._level_rows: list[np.ndarray] = []  # axes of each level (from _compute_levels)
         self._levels_dirty = False
         # AXIS status members per axis, computed when read after an update (`status`)
         self._status: dict[str, np.ndarray] = {}
@@ -162,11 +170,13 @@ class MotionGroup:
         self._homing = HomingSet()
         self.output_cams = OutputCamProcessSet(self)  # MAOC/MDOC: after the axes moved
         self.paths = PathSet()  # coordinate systems and their path moves (MCLM, MCCM, MCS)
+        self.position_cams = PositionCamSet()  # MC_CamIn couplings
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
             self._cams,
             self._gears,
+            self.position_cams,
             self.watch,
             self._homing,
             self._links,
@@ -243,6 +253,7 @@ class MotionGroup:
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
         st = self.status
+        self._levels_dirty = True
         for name_ in STATUS_BITS:
             st[name_] = np.zeros(len(self.axes), dtype=bool)
         st["ServoActionStatus"] = self.servo_on.copy()
@@ -501,6 +512,35 @@ class MotionGroup:
             instruction_mode,
         )  # fmt: skip
 
+    # -- position cams (MC_CamIn) -------------------------------------------------------
+    def start_position_cam(
+        self, slave: int, master: int, law: CamLaw, reference: int = MasterReference.COMMAND
+    ) -> Coupling:
+        """Couple slave to master through a cam law (see poscam.start_position_cam)."""
+        return start_position_cam(self, self.position_cams, slave, master, law, reference)
+
+    def start_mapc(
+        self,
+        slave: int,
+        master: int,
+        profile: CamProfile | None,
+        direction: int = CamDirection.SAME,
+        slave_scaling: float = 1.0,
+        master_scaling: float = 1.0,
+        execution_mode: int = 0,
+        execution_schedule: int = 0,
+        master_lock_position: float = 0.0,
+        cam_lock_position: float = 0.0,
+        reference: int = MasterReference.ACTUAL,
+        master_direction: int = 0,
+    ) -> StartResult:
+        """MAPC; profile None means not calculated (ERR 32). See poscam.start_mapc."""
+        return start_mapc(
+            self, self.position_cams, slave, master, profile, direction, slave_scaling,
+            master_scaling, execution_mode, execution_schedule, master_lock_position,
+            cam_lock_position, reference, master_direction,
+        )  # fmt: skip
+
     # -- the update ------------------------------------------------------------------------
     def _compute_levels(self) -> None:
         """Masters before slaves: level(slave) = level(master) + 1 (cycles are capped)."""
@@ -517,6 +557,7 @@ class MotionGroup:
                 break
         self._level = level
         self._max_level = int(level.max()) if n else 0
+        self._level_rows = [np.flatnonzero(level == lv) for lv in range(self._max_level + 1)]
         self._levels_dirty = False
 
     def update(self) -> list[MotionEvent]:
@@ -545,19 +586,17 @@ class MotionGroup:
             sel = None if single else (self._level, lvl)
             parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
             parts = [c for c in parts if len(c.axis)]
-            idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
-            if parts:
-                if len(parts) == 1:  # one kind of motion running: nothing to join
-                    c = parts[0]
-                    axes, dpos, vel, acc = c.axis, c.dpos, c.vel, c.acc
-                else:
-                    axes = np.concatenate([c.axis for c in parts])
-                    dpos = np.concatenate([c.dpos for c in parts])
-                    vel = np.concatenate([c.vel for c in parts])
-                    acc = np.concatenate([c.acc for c in parts])
-                dpos = np.bincount(axes, dpos, n)
-                vel = np.bincount(axes, vel, n)
-                acc = np.bincount(axes, acc, n)
+            idx: np.ndarray | slice = slice(None) if single else self._level_rows[lvl]
+            if len(parts) == 1:  # one kind of motion at this level (e.g. only cams)
+                c = parts[0]
+                self.command_position += np.bincount(c.axis, c.dpos, n)
+                self.command_velocity[idx] = np.bincount(c.axis, c.vel, n)[idx]
+                self.command_acceleration[idx] = np.bincount(c.axis, c.acc, n)[idx]
+            elif parts:
+                axes = np.concatenate([c.axis for c in parts])
+                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
+                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
+                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]

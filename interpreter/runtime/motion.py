@@ -134,6 +134,9 @@ class MotionRuntime:
         # objects a kind of motion binds to a tag's storage (id of the storage list), e.g. a
         # coordinate system registered with its group's core on first use
         self.attached: dict[int, object] = {}
+        # state that instruction families keep per run (PLCopen blocks: their selections and
+        # the state of each instance), by family name
+        self.extensions: dict[str, object] = {}
         self._build(model, storage, coarse_update_ms)
         self._init_cam_profiles(model, storage)
         # Axis attributes are written lazily (decision 0104): every one once now, then only

@@ -106,6 +106,14 @@ def _elementary_accepted(accepted: tuple[str, ...]) -> frozenset[str]:
     return frozenset(name for name, t in ELEMENTARY.items() if type_matches(t, accepted))
 
 
+def block_reference_fits(mt: DataType, vt: DataType) -> bool:
+    """A function-block input passed by reference: an axis for an axis parameter, a whole
+    one-dimensional array of the parameter's structure (a CAM table) for a structure one."""
+    if is_axis(mt):
+        return is_axis(vt)
+    return isinstance(vt, ArrayType) and vt.elem == mt and len(vt.dims) == 1
+
+
 def unimplemented(ins: Instruction, language: str) -> bool:
     """U304: a catalog instruction that has no implementation in this language yet."""
     if ins.name in LOWERED or ins.family == "aoi":  # compiled inline (JSR SBR RET TND in ST too)
@@ -727,12 +735,19 @@ class Checker(LadderChecks):
         return plan
 
     def fb_call(self, c: n.Call, tag: Tag, ins: Instruction) -> None:
+        """`camIn(Master := X, Execute := go, ...)`: every parameter by name, elementary inputs
+        stored into the instance, axis and CAM-array inputs passed by reference, enumeration
+        words for enumerated inputs, outputs (readonly members) only read; the catalog marks
+        the inputs every call must give (SPEC 3.1, decision 0126)."""
         st = tag.type
         assert isinstance(st, StructType)
         inst = n.Name(c.name, c.name_span)
         self.a.tag_of[id(inst)] = tag
         self.a.type_of[id(inst)] = st
         fb = FBCall(ins, inst, [], [])
+        td = self.cat.type(st.name)
+        info = {m.name.upper(): m for m in td.members} if td is not None else {}
+        given: set[str] = set()
         for a in c.args:
             if isinstance(a.value, n.Placeholder):
                 self.err(
@@ -745,6 +760,7 @@ class Checker(LadderChecks):
                 self.err(
                     "E130", "function block parameters are given by name (Name := value)", a.span
                 )
+                given.add("")  # reported: no missing-parameter error on top
                 continue
             out = a.name.endswith("=>")
             mname = a.name[:-2] if out else a.name
@@ -756,20 +772,52 @@ class Checker(LadderChecks):
                     f"'{st.name}' has no parameter '{mname}'{self.suggest(mname, names)}",
                     a.span,
                 )
-                self.expr(a.value)
+                self.loose(a.value)
                 continue
+            mi = info.get(mname.upper())
             if out:
                 vt = self.target(a.value)
                 if vt is not None:
                     self.check_assignable(vt, m[1], a.span)
                 fb.outputs.append((m[0], m[1], a.value))
-            else:
-                vt = self.expr(a.value)
-                if vt is not None and isinstance(m[1], Elementary):
+                continue
+            given.add(mname.upper())
+            if mi is not None and mi.readonly:
+                self.err(
+                    "E120", f"{st.member_name(mname)} is an output of {st.name}: read it", a.span
+                )
+                self.loose(a.value)
+                continue
+            if mi is not None and mi.enum is not None:
+                op = Operand(mi.name, ("DINT",), "value", "in", enum=mi.enum)
+                if self.enum_operand(ins, op, a.value):
+                    fb.inputs.append((m[0], m[1], a.value))
+                    continue
+            vt = self.expr(a.value)
+            if isinstance(m[1], Elementary):
+                if vt is not None:
                     self.check_assignable(m[1], vt, a.value.span)
-                fb.inputs.append((m[0], m[1], a.value))
+            elif vt is not None and not self.fb_reference(m[1], vt, a.value):
+                what = "an axis tag" if is_axis(m[1]) else f"a whole {m[1]} array tag"
+                self.err(
+                    "E105",
+                    f"{st.name} parameter {st.member_name(mname)} needs {what}, not {vt}",
+                    a.value.span,
+                )
+            fb.inputs.append((m[0], m[1], a.value))
+        missing = [m.name for m in info.values() if m.required and m.name.upper() not in given]
+        if missing and "" not in given:
+            self.err(
+                "E104",
+                f"call of '{c.name}' ({st.name}) is missing {', '.join(missing)}",
+                c.name_span,
+            )
         self.a.fb_of[id(c)] = fb
         self.require_implementation(ins, c.name_span)
+
+    @staticmethod
+    def fb_reference(mt: DataType, vt: DataType, e: n.Expr) -> bool:
+        return isinstance(e, n.Name | n.Member) and block_reference_fits(mt, vt)
 
     def aoi_arguments(self, name: str, args: list[n.Expr]) -> None:
         """InOut arguments are passed by reference: they need the parameter's exact type."""

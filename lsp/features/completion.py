@@ -7,13 +7,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from interpreter.semantics.checker import type_matches
+from interpreter.semantics.checker import block_reference_fits, type_matches
 from interpreter.semantics.program import ProgramModel, Tag
 from interpreter.semantics.types import ArrayType, DataType, Elementary, StructType
 from stdlib import Instruction, Operand, catalog
 
 from ..workspace import Analysed
 from .context import Context, Where, classify, offset_of
+from .fblock import Block, block, member_line, named_parameter
 from .resolve import find_instruction, program_at, type_of_operand, visible_tags
 
 # ST statement keywords (the statement forms of SPEC 3.1).
@@ -118,6 +119,10 @@ def members(t: DataType | None) -> list[Item]:
 
 
 def operand_items(model: ProgramModel, ctx: Context, program: str | None) -> list[Item]:
+    if ctx.language == "st":
+        fb = block(model, ctx.instruction, program)
+        if fb is not None:
+            return block_items(model, fb, ctx, program)
     ins = find_instruction(model, ctx.instruction, ctx.language)
     if ins is None or not ins.operands:
         return []
@@ -134,6 +139,41 @@ def operand_items(model: ProgramModel, ctx: Context, program: str | None) -> lis
     fitting = [t for t in visible_tags(model, program) if _fits(t.type, op)]
     items.extend(tag_items(fitting, sort="3" if op.enum is None else "7"))
     return items
+
+
+def block_items(model: ProgramModel, fb: Block, ctx: Context, program: str | None) -> list[Item]:
+    """Inside `camIn(`: the input names (`Name := `); after `Name :=`, that input's values."""
+    param = named_parameter(ctx.arg_text)
+    if param is None:
+        return [
+            Item(
+                m.name,
+                Kind.FIELD,
+                member_line(m),
+                m.doc,
+                f"{m.name} := ",
+                sort=f"{0 if m.required else 1}{i:03d}",
+            )  # fmt: skip
+            for i, m in enumerate(fb.inputs)
+        ]
+    m = fb.member(param)
+    if m is None or m.readonly:
+        return []
+    if m.enum is not None:
+        op = Operand(m.name, ("DINT",), "value", "in", enum=m.enum)
+        return enum_items(op, False)
+    st = fb.tag.type
+    assert isinstance(st, StructType)
+    found = st.member(m.name)
+    assert found is not None
+    want = found[1]
+    tags = visible_tags(model, program)
+    if isinstance(want, Elementary):
+        fitting = [t for t in tags if isinstance(t.type, Elementary)]
+        extra = [Item(k, Kind.KEYWORD, sort="6") for k in ("TRUE", "FALSE")] if want.is_bool else []
+        return tag_items(fitting, sort="3") + extra
+    fitting = [t for t in tags if block_reference_fits(want, t.type)]
+    return tag_items(fitting, sort="3")
 
 
 def enum_items(op: Operand, ladder: bool) -> list[Item]:

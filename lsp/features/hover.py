@@ -11,6 +11,7 @@ from stdlib import Instruction, catalog
 
 from ..workspace import Analysed
 from .context import Where, classify, offset_of
+from .fblock import block, block_markdown, member_line, named_parameter
 from .resolve import find_instruction, find_tag, program_at, word_at
 
 _CODE = re.compile(r"^[SEWU]\d{3}$")
@@ -28,10 +29,26 @@ def hover(an: Analysed, line: int, character: int) -> str | None:
     if _CODE.match(word) and word in REGISTRY:
         return code_markdown(word)
     if text[end : end + 1] == "(" or text[end:].lstrip()[:1] == "(":
+        fb = block(model, word, program) if _language(an) == "st" else None
+        if fb is not None:
+            return block_markdown(fb)
         ins = find_instruction(model, word, _language(an))
         if ins is not None:
             return instruction_markdown(ins)
     ctx = classify(text, end, an.document.language or "st")
+    if ctx.where is Where.OPERAND and text[end:].lstrip()[:2] in (":=", "=>"):
+        fb = block(model, ctx.instruction, program)
+        m = fb.member(word) if fb is not None else None
+        if fb is not None and m is not None:
+            return f"**{fb.type.name}.{m.name}**: {member_line(m)}"
+    if ctx.where is Where.OPERAND:
+        fb = block(model, ctx.instruction, program)
+        param = named_parameter(ctx.arg_text)
+        m = fb.member(param) if fb is not None and param is not None else None
+        if fb is not None and m is not None and m.enum is not None:
+            value = catalog().enum(m.enum).lookup(word)
+            if value is not None:
+                return f"**{value.text}** = {value.value}: {value.doc}\n\n{fb.type.name} input {m.name}"
     if ctx.where is Where.OPERAND:
         ins = find_instruction(model, ctx.instruction, ctx.language)
         if ins is not None and ins.operands:

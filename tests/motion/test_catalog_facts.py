@@ -12,7 +12,7 @@ from enum import IntEnum
 
 import pytest
 
-from interpreter.motion import enums
+from interpreter.motion import enums, poscam
 from interpreter.motion.errors import MotionError
 from interpreter.motion.group import STATUS_BITS, MotionGroup
 from interpreter.motion.paths import Termination
@@ -36,6 +36,11 @@ MIRRORS: list[tuple[type[IntEnum], str]] = [
     (enums.HomeSequence, "HomeSequence"),
     (enums.MergeMode, "CoordMerge"),
     (Termination, "TerminationType"),
+    (poscam.CamStartMode, "StartMode"),
+    (poscam.CamInError, "MC_ErrorID"),
+    (poscam.PositionCamMode, "PositionCamExecutionMode"),
+    (poscam.PositionCamSchedule, "PositionCamExecutionSchedule"),
+    (poscam.CamMasterDirection, "CamMasterDirection"),
 ]
 
 # words the core's member names leave out of the catalog text ("Time Driven Mode")

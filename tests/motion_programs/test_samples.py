@@ -109,3 +109,31 @@ def test_rounded_rectangle_closes_the_path_without_stopping(tmp_path, capsys) ->
             assert abs(((x - cx) ** 2 + (y - cy) ** 2) ** 0.5 - 5.0) < 0.01
         else:
             assert min(abs(x), abs(x - 40.0), abs(y), abs(y - 20.0)) < 0.01
+
+
+def test_rotary_knife_both_knives_run_the_same_cam(tmp_path, capsys) -> None:
+    """samples/rotary_knife.st: once KnifeA is in sync the two knives keep a constant
+    distance (the same cam, KnifeB moved from where it stood), and each turns 360 degrees
+    per 500 mm of strip (one cut per piece)."""
+    import csv
+
+    trace = tmp_path / "knife.csv"
+    watch = ["Line.CommandPosition", "KnifeA.CommandPosition", "KnifeB.CommandPosition"]
+    watch += ["CamA.InSync", "CamA.Error", "KnifeBCam.ER"]
+    argv = ["--duration", "2", "--trace", str(trace)]
+    for w in watch:
+        argv += ["--watch", w]
+    _run(capsys, "rotary_knife.st", *argv)
+    with trace.open() as fh:
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(fh)]
+    synced = [r for r in rows if r["CamA.InSync"] == 1]
+    assert synced and all(r["CamA.Error"] == 0 and r["KnifeBCam.ER"] == 0 for r in rows)
+    gap = [r["KnifeA.CommandPosition"] - r["KnifeB.CommandPosition"] for r in synced]
+    assert max(gap) - min(gap) < 1e-3
+    # the strip advances 1000 mm/s: 500 mm is 0.5 s = 500 scans later
+    first = rows.index(synced[0])
+    a, b = rows[first], rows[first + 500]
+    assert b["Line.CommandPosition"] - a["Line.CommandPosition"] == 500.0
+    for knife in ("KnifeA", "KnifeB"):
+        turned = b[f"{knife}.CommandPosition"] - a[f"{knife}.CommandPosition"]
+        assert abs(turned - 360.0) < 1e-3
