@@ -180,21 +180,8 @@ def dcs(
 
 
 @prescan("DCS")
-def dcs_prescan(
-    ctx: ExecContext,
-    rung: bool,
-    s: list,
-    safety_function: int,
-    input_type: int,
-    discrepancy_ms: int,
-    restart_type: int,
-    cold_start_type: int,
-    channel_a: object,
-    channel_b: object,
-    input_status: object,
-    reset: object,
-) -> None:
-    _clear(s, DCS_M, reset)
+def dcs_prescan(ctx: ExecContext, rung: bool, s: list, *ops: object) -> None:
+    _clear(s, DCS_M, ops[-1])  # Reset is the last operand
     s[COLD] = 1  # the cold start type governs the first start
 
 
@@ -230,19 +217,8 @@ def dcm(
 
 
 @prescan("DCM")
-def dcm_prescan(
-    ctx: ExecContext,
-    rung: bool,
-    s: list,
-    safety_function: int,
-    input_type: int,
-    discrepancy_ms: int,
-    channel_a: object,
-    channel_b: object,
-    input_status: object,
-    reset: object,
-) -> None:
-    _clear(s, DCM_M, reset)
+def dcm_prescan(ctx: ExecContext, rung: bool, s: list, *ops: object) -> None:
+    _clear(s, DCM_M, ops[-1])
 
 
 # ------------------------------------------------------------------ DCSRT
@@ -289,18 +265,6 @@ def dcsrt(
 
 
 @prescan("DCSRT")
-def dcsrt_prescan(
-    ctx: ExecContext,
-    rung: bool,
-    s: list,
-    safety_function: int,
-    input_type: int,
-    discrepancy_ms: int,
-    enable: object,
-    channel_a: object,
-    channel_b: object,
-    input_status: object,
-    reset: object,
-) -> None:
-    _clear(s, DCSRT_M, reset)
+def dcsrt_prescan(ctx: ExecContext, rung: bool, s: list, *ops: object) -> None:
+    _clear(s, DCSRT_M, ops[-1])
     s[ARMED] = 0  # channels already active at the go to Run are not a start
