@@ -305,6 +305,26 @@ def _event_points(prof: MoveProfile | None, events: ArrayRef, out: ArrayRef) -> 
         out.set(k, t)
 
 
+def _start_move(
+    ctx: ExecContext, rung: bool, cs: list, ctl: list, move_type: int, position: ArrayRef
+) -> tuple[MotionRuntime, System, int, np.ndarray] | None:
+    """MCLM's and MCCM's common start: the system, Move Type (operand 2) and the end
+    Position (operand 3), each refused with ERR 13 and its operand index."""
+    started = _start(ctx, rung, cs, ctl)
+    if started is None:
+        return None
+    rt, s = started
+    mt = whole(move_type)
+    if mt not in (0, 1):
+        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 2)
+        return None
+    target = _point(position, len(s.axes))
+    if target is None or not np.isfinite(target).all():
+        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 3)
+        return None
+    return rt, s, mt, target
+
+
 # ------------------------------------------------------------------ MCLM
 @implements("MCLM")
 def mclm(
@@ -316,19 +336,10 @@ def mclm(
     calculated_data: ArrayRef | None,
 ) -> None:  # fmt: skip
     """Straight line to Position (absolute or incremental) at the vector dynamics given."""
-    started = _start(ctx, rung, cs, ctl)
+    started = _start_move(ctx, rung, cs, ctl, move_type, position)
     if started is None:
         return
-    rt, s = started
-    ndim = len(s.axes)
-    mt = whole(move_type)
-    if mt not in (0, 1):
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 2)
-        return
-    target = _point(position, ndim)
-    if target is None or not np.isfinite(target).all():
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 3)
-        return
+    rt, s, mt, target = started
     common = _common(rt, ctl, s, 4, (
         speed, speed_units, accel, accel_units, decel, decel_units, profile, accel_jerk,
         decel_jerk, jerk_units, termination, merge, merge_speed, command_tolerance,
@@ -360,19 +371,11 @@ def mccm(
 ) -> None:  # fmt: skip
     """Circular arc (or full circle) to Position, defined by a via point, a centre or a
     radius (path_geometry.circle); geometry errors 44..49 (25: Radius in 3D)."""
-    started = _start(ctx, rung, cs, ctl)
+    started = _start_move(ctx, rung, cs, ctl, move_type, position)
     if started is None:
         return
-    rt, s = started
+    rt, s, mt, target = started
     ndim = len(s.axes)
-    mt = whole(move_type)
-    if mt not in (0, 1):
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 2)
-        return
-    target = _point(position, ndim)
-    if target is None or not np.isfinite(target).all():
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 3)
-        return
     ct = whole(circle_type)
     if ct not in range(4):
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 4)
