@@ -28,8 +28,7 @@ from .locate import walk
 
 _CDATA_OPEN = b"<![CDATA["
 _CDATA_CLOSE = b"]]>"
-# A character XML does not allow, or a CR (the parser turns CR LF into LF): not patched.
-_NOT_PLAIN = re.compile("[^\t\n\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+_NOT_XML = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
 # What may follow a CDATA section on its line without holding a position: its end, the rest
 # of the element's text and closing tags.
 _LINE_REST = re.compile(rb"\]\]>[^<]*(?:</[^<>]*>\s*)*")
@@ -93,15 +92,20 @@ class ExportState:
             rest = tail.decode("utf-8")
         except UnicodeDecodeError:
             return None
-        if b"&" in tail or b"\r" in tail or elem.text != before + rest:
+        if b"&" in tail or elem.text != _as_xml_reads(before + rest):
             return None  # the element's text is not exactly this one CDATA section
-        if "]]>" in after or _NOT_PLAIN.search(after) or after.count("\n") != before.count("\n"):
+        if (
+            "]]>" in after
+            or _NOT_XML.search(after)
+            or after.count("\n") != before.count("\n")  # the file's lines
+            or _as_xml_reads(after).count("\n") != _as_xml_reads(before).count("\n")  # as read
+        ):
             return None  # would end the section early, not be XML, or move lines
         line_end = data.find(b"\n", new_b)
         line_end = len(data) if line_end < 0 else line_end
         if line_end > end + delta and not _LINE_REST.fullmatch(data, end + delta, line_end):
             return None  # something after it on this line would change column
-        return self._patch(data, k, after + rest, delta)
+        return self._patch(data, k, _as_xml_reads(after + rest), delta)
 
     def _patchable(self) -> bool:
         loaded = self.result.loaded
@@ -208,6 +212,11 @@ def _replace_analysis(loaded: Loaded, old: n.Routine, checker: Checker) -> None:
     a.tag_of.update(new.tag_of)
     a.system_of.update(new.system_of)
     a.unsimulated |= new.unsimulated
+
+
+def _as_xml_reads(text: str) -> str:
+    """XML reads CR LF and a lone CR as LF (exports written on Windows have CR LF)."""
+    return text.replace("\r\n", "\n").replace("\r", "\n") if "\r" in text else text
 
 
 def changed(old: bytes, new: bytes) -> tuple[int, int, int]:

@@ -13,6 +13,8 @@ import json
 import random
 from pathlib import Path
 
+import pytest
+
 from interpreter.cli import main
 from interpreter.semantics.document import analyse_project
 from interpreter.semantics.incremental import ExportState, changed
@@ -147,17 +149,20 @@ def test_changed_finds_the_edit() -> None:
     assert changed(b"", b"x") == (0, 0, 1)
 
 
-PIECES = ["XIC(Run)", "OTE(", ")", ";", "mc", "ax", ",", "[", "]", "n", "1", " ", "+", ":=",
+PIECES = ["\r\n", "XIC(Run)", "OTE(", ")", ";", "mc", "ax", ",", "[", "]", "n", "1", " ", "+", ":=",
           "Start", "Local:1:I.Data.3", "MSF(ax,mc)", "é", "]]>", "<", "&", "\n", "\r", "\x01"]  # fmt: skip
 
 
-def test_random_edits_inside_routine_texts_equal_a_fresh_analysis() -> None:
+@pytest.mark.parametrize("newline", ["\n", "\r\n"], ids=["lf", "crlf"])
+def test_random_edits_inside_routine_texts_equal_a_fresh_analysis(newline: str) -> None:
     """Seeded random inserts and deletes, mostly inside rung and ST line texts, applied one
-    after another to one open document: after each, the analysis equals a fresh one."""
-    rng = random.Random("logixst-incremental")
+    after another to one open document: after each, the analysis equals a fresh one. The
+    export is also written with CR LF line ends (as on Windows), with multi-line comments."""
+    rng = random.Random(f"logixst-incremental-{newline!r}")
     ws = Workspace()
     uri = "file://" + PATH
-    text = TEXT
+    start = TEXT.replace("Seal in", "Seal in\nand hold").replace("\n", newline)
+    text = start
     ws.open(uri, text)
     ws.analyse(uri)
     patched = 0
@@ -181,7 +186,7 @@ def test_random_edits_inside_routine_texts_equal_a_fresh_analysis() -> None:
         assert summary(an.diagnostics) == want, (version, text)
         patched += ws._exports.get(uri) is before
         if any(code == "S007" for code, _, _ in want):
-            text = TEXT  # the XML is broken: start again from the fixture (a full read)
+            text = start  # the XML is broken: start again from the fixture (a full read)
     assert patched > 150  # most edits took the patch (the rest were read again)
 
 
