@@ -208,3 +208,24 @@ def test_patched_equals_check_json(tmp_path: Path, capsys) -> None:  # type: ign
         for w in want
     ]
     assert [w["code"] for w in want] == ["U306", "W203", "E101"]
+
+
+def test_an_element_after_the_text_on_its_line_is_not_moved() -> None:
+    # Rung 0's text, its end tags and rung 1's start on one line: an edit in that text would
+    # move rung 1's column, so it is read again; with only end tags after it, it is patched.
+    one_line = replace(
+        TEXT,
+        'XIC(Start)OTE(Run);]]>\n</Text>\n</Rung>\n<Rung Number="1" Type="N">',
+        'XIC(Start)OTE(Run);]]></Text></Rung><Rung Number="1" Type="N">',
+    )
+    text = replace(one_line, "XIC(Start)OTE(Run);", "XIC(Start)OTE(Runs);")
+    assert state_for(one_line).update(text.encode("utf-8")) is None
+    end_tags = replace(TEXT, "XIC(Start)OTE(Run);]]>\n</Text>", "XIC(Start)OTE(Run);]]></Text>")
+    text = replace(end_tags, "XIC(Start)OTE(Run);", "XIC(Start)OTE(Runs);")
+    state = ExportState.read(PATH, end_tags.encode("utf-8"))
+    loaded = state.update(text.encode("utf-8"))
+    assert loaded is not None
+    assert summary(loaded.diagnostics) == summary(
+        analyse_project(PATH, text.encode("utf-8")).diagnostics
+    )
+    assert "E101" in [c for c, _, _ in summary(loaded.diagnostics)]
