@@ -59,7 +59,9 @@ def probe(settings: dict[str, str]) -> dict:  # type: ignore[type-arg]
     return json.loads(done.stdout)  # type: ignore[no-any-return]
 
 
-@pytest.mark.skipif(NODE is None, reason="Node.js is not installed (Debian package nodejs)")
+@pytest.mark.skipif(
+    NODE is None, reason="Node.js is not installed (.ci/run installs the Debian package nodejs)"
+)
 def test_extension_starts_logixst_lsp_for_its_languages() -> None:
     out = probe({"logixst.tags": "/plant/tags.L5X"})
     assert out["subscriptions"] == 1 and out["started"]
@@ -78,7 +80,9 @@ def test_extension_starts_logixst_lsp_for_its_languages() -> None:
     assert other["clientOptions"]["initializationOptions"] == {"logixst": {"tags": None}}
 
 
-@pytest.mark.skipif(NODE is None, reason="Node.js is not installed (Debian package nodejs)")
+@pytest.mark.skipif(
+    NODE is None, reason="Node.js is not installed (.ci/run installs the Debian package nodejs)"
+)
 def test_the_extensions_command_serves_with_its_options(tmp_path: Path) -> None:
     """The command line and initialization options the extension sends start a server that
     takes `logixst.tags`: a routine using a tag of that export checks clean."""
