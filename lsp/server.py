@@ -173,18 +173,21 @@ def _collector_paused(fn: Callable[[], R]) -> R:
     """Analysis allocates many small objects and no cycles worth collecting: the cyclic
     collector's passes would cost a third of the time (as in runtime/loader.gc_paused).
 
-    Afterwards everything alive is frozen out of the collector's sight (gc.freeze): an
-    export's analysis is some 600,000 objects, and once they are old a full collection of
-    them takes about a second, which would land inside some later keystroke's request.
+    After an analysis everything alive is frozen out of the collector's sight (gc.freeze):
+    an export's analysis is some 600,000 objects, and once they are old a full collection
+    of them takes about a second, which would land inside some later keystroke's request.
     What was frozen is still freed by reference counting when it is dropped (an analysis
-    holds no cycles: xml_reader breaks its parser's)."""
+    holds no cycles: xml_reader breaks its parser's). Requests answered from the cache do
+    not freeze, so their short-lived cycles stay collectable (decision 0119)."""
     enabled = gc.isenabled()
+    before = server.docs.analyses
     gc.disable()
     try:
         return fn()
     finally:
         if enabled:
-            gc.freeze()
+            if server.docs.analyses != before:
+                gc.freeze()
             gc.enable()
 
 

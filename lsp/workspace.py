@@ -89,6 +89,7 @@ class Workspace:
     tags_path: str | None = None  # the `logixst.tags` setting: plays the role of --tags
     _cache: dict[str, tuple[tuple[object, ...], Analysed]] = field(default_factory=dict)
     _exports: dict[str, ExportState] = field(default_factory=dict)  # an export's last analysis
+    analyses: int = 0  # how many analyses were run (not answered from the cache)
 
     def open(self, uri: str, text: str, version: int = 0) -> Document:
         doc = Document(uri, uri_to_path(uri), text, version)
@@ -121,6 +122,7 @@ class Workspace:
         hit = self._cache.get(uri)
         if hit is not None and hit[0] == key:
             return hit[1]
+        self.analyses += 1
         if doc.language == "l5x":
             loaded = self._export(uri, doc)
         else:
