@@ -157,7 +157,7 @@ def parse_set_value(text: str, target: DataType | None = None) -> object:
 
 def cmd_run(args: argparse.Namespace) -> int:
     # The controller (and numpy, for motion) is imported here so `check` starts faster.
-    from .runtime.controller import Controller, WatchError, to_json_value
+    from .runtime.controller import Controller, WatchError
 
     if not 0 < args.scan_period < math.inf:  # also rejects nan
         raise UsageError("--scan-period must be a finite number > 0")
@@ -229,7 +229,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         _write_plot(args.plot, ctl, args.programs, watches, trace_rows)
     faults = ctl.faults()
-    tags = {w: to_json_value(g(), t) for w, g, t in watches}
+    tags = {w: _tag_json(g, t) for w, g, t in watches}
     sim_time = ctl.scans * args.scan_period / 1000.0
     if args.json:
         print(
@@ -290,6 +290,9 @@ def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], 
     out = []
     for w in exprs:
         try:
+            if w.lower().endswith(EDGES):
+                out.append((w, _edge_watch(ctl, w), _edge_type(ctl, w)))
+                continue
             getter, t, _ = ctl.reference(w)
         except WatchError as exc:
             raise UsageError(f"--watch {exc}") from None
@@ -297,15 +300,50 @@ def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], 
     return out
 
 
+EDGES = "@edges"  # --watch OUT@edges / OUT.n@edges: output cam switch instants (decision 0113)
+
+
+def _edge_type(ctl: Controller, w: str) -> DataType:
+    return ctl.reference(w[: -len(EDGES)])[1]
+
+
+def _edge_watch(ctl: Controller, w: str) -> Callable[[], object]:
+    from .instructions.motion_outputcam import EdgeWatch
+
+    location, t, _ = ctl.reference(w[: -len(EDGES)], as_ref=True)
+    if ctl.ctx.motion is None or not (isinstance(t, Elementary) and (t.is_bool or t.is_integer)):
+        raise UsageError(
+            f"--watch {w}: {EDGES} takes an output cam's Output word or one of its bits"
+        )
+    return EdgeWatch(ctl.ctx.motion, location())  # type: ignore[arg-type]
+
+
+def _tag_json(getter: Callable[[], object], t: DataType) -> object:
+    from .runtime.controller import to_json_value
+
+    edges = getattr(getter, "json", None)  # an @edges watch: every switch instant
+    return edges() if edges is not None else to_json_value(getter(), t)
+
+
 def _csv_value(v: object, t: object) -> object:
     from .runtime.controller import to_json_value
 
+    if isinstance(v, str):  # an @edges cell
+        return v
     j = to_json_value(v, t)  # type: ignore[arg-type]
     if isinstance(j, bool):
         return 1 if j else 0
     if isinstance(j, dict | list):
         return json.dumps(j)
     return j
+
+
+def _edge_steps(g: object, t0: float) -> tuple[list[float], list[float]]:
+    """An @edges bit watch as a step series: the state before the first edge, then each edge."""
+    edges: list[tuple[float, int, int]] = g.edges  # type: ignore[attr-defined]
+    times = [t0] + [e[0] for e in edges]
+    values = [float(1 - edges[0][2]) if edges else 0.0] + [float(e[2]) for e in edges]
+    return times, values
 
 
 def _write_trace(path: Path, names: list[str], rows: list[list[object]]) -> None:
@@ -326,9 +364,14 @@ def _write_plot(
     rows: list[list[object]],
 ) -> None:
     series = []
-    for j, (name, _, t) in enumerate(watches, start=1):
+    for j, (name, g, t) in enumerate(watches, start=1):
         if not isinstance(t, Elementary):
             continue  # structures and strings are not drawn
+        if name.lower().endswith(EDGES):
+            if getattr(g, "bit", None) is not None:  # a bit: a lane stepped at the exact instants
+                times, values = _edge_steps(g, float(rows[0][0]) if rows else 0.0)  # type: ignore[arg-type]
+                series.append(Series(name, values, "bool", times))
+            continue
         kind = "bool" if t.is_bool else "int" if t.is_integer or t.is_time else "real"
         series.append(Series(name, [float(r[j]) for r in rows], kind))  # type: ignore[arg-type]
     data = PlotData(

@@ -35,6 +35,7 @@ class Series:
     name: str  # the watch expression as given
     values: list[float]
     kind: str  # "bool", "int" or "real"
+    times: list[float] | None = None  # own instants (an @edges watch), else the rows' times
 
 
 @dataclass(slots=True)
@@ -144,8 +145,13 @@ def _bits(ax, t: list[float], series: list[Series]) -> None:  # type: ignore[no-
     """BOOL signals as stacked steps, one lane each, labelled on the y axis."""
     lanes = list(reversed(series))
     for i, s in enumerate(lanes):
-        ax.fill_between(t, i, [i + 0.8 * v for v in s.values], step="post", alpha=0.6)
-        ax.step(t, [i + 0.8 * v for v in s.values], where="post", linewidth=1.0)
+        ts = s.times if s.times is not None else t
+        if s.times is not None and t:  # exact edges: hold the last state to the end
+            ts, vs = [*ts, t[-1]], [*s.values, s.values[-1]]
+        else:
+            vs = s.values
+        ax.fill_between(ts, i, [i + 0.8 * v for v in vs], step="post", alpha=0.6)
+        ax.step(ts, [i + 0.8 * v for v in vs], where="post", linewidth=1.0)
     ax.set_yticks([i + 0.4 for i in range(len(lanes))])
     ax.set_yticklabels([s.name for s in lanes], fontsize="small")
     ax.set_ylim(-0.2, len(lanes))

@@ -71,6 +71,25 @@ class Operand:
 
 
 @dataclass(frozen=True, slots=True)
+class UnconnectedCase:
+    """Further members set on while an enumerated operand has one value (ROUT Negative)."""
+
+    operand: str
+    value: str
+    on: tuple[str, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Unconnected:
+    """What a safety instruction shows on a controller whose safety I/O is not connected
+    (decision 0078): members of its instance tag held off and members set on."""
+
+    off: tuple[str, ...]
+    on: tuple[str, ...]
+    cases: tuple[UnconnectedCase, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
 class Instruction:
     name: str
     aliases: tuple[str, ...]
@@ -90,6 +109,9 @@ class Instruction:
     check: str = ""
     # kind = "function": the result type when it is not the argument's (REAL, BOOL).
     result: str = ""
+    # A safety instruction shown as with its safety I/O not connected (decision 0078): the
+    # members of its instance tag held off and set on; None for every other instruction.
+    unconnected: Unconnected | None = None
 
     @property
     def key(self) -> str:
@@ -226,7 +248,22 @@ def _instruction(raw: dict, family: str, where: str) -> Instruction:
         unsupported=str(raw.get("unsupported", "")),
         check=str(raw.get("check", "")),
         result=str(raw.get("result", "")).upper(),
+        unconnected=_unconnected(raw.get("unconnected")),
     )
+
+
+def _names(raw: dict, key: str) -> tuple[str, ...]:
+    return tuple(str(n) for n in raw.get(key, []))
+
+
+def _unconnected(raw: dict | None) -> Unconnected | None:
+    if raw is None:
+        return None
+    cases = tuple(
+        UnconnectedCase(str(c["operand"]), str(c["is"]), _names(c, "on"))
+        for c in raw.get("cases", [])
+    )
+    return Unconnected(_names(raw, "off"), _names(raw, "on"), cases)
 
 
 def _load_file(path: Path) -> dict:
@@ -292,7 +329,27 @@ def catalog() -> Catalog:
         for op in ins.operands:
             if op.enum is not None and op.enum not in cat.enums:
                 raise CatalogError(f"{ins.name}.{op.name}: unknown enum {op.enum}")
+        if ins.unconnected is not None:
+            _check_unconnected(cat, ins)
     return cat
+
+
+def _check_unconnected(cat: Catalog, ins: Instruction) -> None:
+    """Every member an `unconnected` entry names is a BOOL of the instance type, and every
+    case names an enumerated operand and one of its texts."""
+    u = ins.unconnected
+    assert u is not None
+    td = cat.types.get(ins.operands[0].types[0]) if ins.operands else None
+    bools = {m.name for m in td.members if m.type == "BOOL"} if td is not None else set()
+    names = [*u.off, *u.on, *(n for c in u.cases for n in c.on)]
+    for n in names:
+        if n not in bools:
+            raise CatalogError(f"{ins.name}: unconnected names {n}, not a BOOL of its tag")
+    ops = {o.name: o for o in ins.operands}
+    for c in u.cases:
+        op = ops.get(c.operand)
+        if op is None or op.enum is None or cat.enums[op.enum].lookup(c.value) is None:
+            raise CatalogError(f"{ins.name}: unconnected case {c.operand} = {c.value}")
 
 
 def _access(text: str, where: str) -> frozenset[str]:

@@ -100,12 +100,10 @@ def test_pending_instruction_is_reported_not_run(tmp_path) -> None:  # type: ign
     from interpreter.runtime.loader import load
 
     src = tmp_path / "p.st"
-    src.write_text(
-        "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nIF 1 THEN MDOC(ax, 0, c, All); END_IF;\n"
-    )
+    src.write_text("VAR f : DINT; END_VAR\nIF 1 THEN PFL(f); END_IF;\n")
     diags = load([src]).diagnostics
-    assert [d.code for d in diags] == ["U304"]  # MDOC is refused until output cams land
-    assert catalog().instruction("MDOC", "st").unsupported in diags[0].message
+    assert [d.code for d in diags] == ["U304"]  # equipment phases are not simulated
+    assert catalog().instruction("PFL", "st").unsupported in diags[0].message
     src.write_text(
         "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nIF 1 THEN MSO(ax, c); END_IF;\n"
     )

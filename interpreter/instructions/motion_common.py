@@ -70,8 +70,9 @@ def failed(rt: MotionRuntime, ctl: list, result: StartResult) -> bool:
 
 def configured(rt: MotionRuntime, ctl: list, target: _A | None) -> _A | None:
     """The axis or group an instruction names; None (error 11) when it is not configured."""
-    if target is None:
+    if target is None or (isinstance(target, Axis) and not rt.read_unwind(target)):
         fail(rt, ctl, MotionError.AXIS_NOT_CONFIGURED)
+        return None
     return target
 
 

@@ -3,15 +3,17 @@
 Operands arrive in catalog (faceplate) order; EXERR of error 13 is the zero-based faceplate
 index. MAM/MAJ set DN and IP in the executing scan; the planner reports the rest: ACCEL /
 DECEL during the ramps, PC when a move or stop completes, IP cleared when the motion ends
-(completed, replaced, stopped). Rotary unwind and position cams are not simulated: rotary
-move types give error 17 (the answer of a linear axis), master offset moves error 33.
+(completed, replaced, stopped). The rotary move types (shortest path, positive, negative)
+need a rotary axis (error 17 on a linear one; decision 0115). Position cams are not
+simulated: master offset moves give error 33.
 """
 
 from __future__ import annotations
 
 import math
 
-from ..motion import MergeMode, MotionError, StartResult
+from ..motion import MergeMode, MotionError, MoveType, StartResult
+from ..motion.moves import move_distance
 from ..runtime.motion import Axis, Group, MotionRuntime, Tracked
 from ..runtime.motion_layout import set_bits
 from ..vm.context import ExecContext
@@ -35,7 +37,6 @@ from .motion_common import (
 )
 from .registry import implements, prescan
 
-_ROTARY_MOVES = (2, 3, 4)
 _MASTER_OFFSET_MOVES = (5, 6)
 _AT_REST = 1e-9
 
@@ -91,15 +92,16 @@ def mam(
         return
     core, i = ax.group.core, ax.index
     mt = whole(move_type)
-    if mt in _ROTARY_MOVES:
-        fail(rt, ctl, MotionError.AXIS_MODE_NOT_ROTARY)
-        return
     if mt in _MASTER_OFFSET_MOVES:
         fail(rt, ctl, MotionError.POSITION_CAM_NOT_ENABLED)
         return
-    if mt not in (0, 1):
+    if mt not in MoveType.__members__.values():
         fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, 2)
         return
+    if mt >= MoveType.ROTARY_SHORTEST_PATH:  # operand errors first, as the core would
+        r = core.check_rotary_move(i, mt, real(position))
+        if failed(rt, ctl, r):
+            return
     block = _move_dynamics(
         rt, ctl, ax, 4, speed, speed_units, accel, accel_units, decel, decel_units, profile,
         accel_jerk, decel_jerk, jerk_units, merge, allow_time_based=True,
@@ -117,8 +119,7 @@ def mam(
         ):
             fail(rt, ctl, MotionError.AXIS_NOT_AT_REST)
             return
-        pos = real(position)
-        dist = pos - float(core.command_position[i]) if mt == 0 else pos
+        dist = move_distance(core, i, mt, real(position))
         dyn = time_based_rates(dyn, dist)
     if event_distance is not None and (
         calculated_data is None or len(calculated_data) < len(event_distance)

@@ -189,7 +189,9 @@ def time_cam_trajectory(
 class ProfileBank:
     """Several profiles laid end to end on one axis so one searchsorted serves all cams."""
 
-    __slots__ = ("profiles", "base", "knots", "coef", "first_seg", "last_seg", "key")
+    __slots__ = (
+        "profiles", "base", "knots", "knot_rows", "coef", "first_seg", "last_seg", "key",
+    )  # fmt: skip
 
     def __init__(self, profiles: list[CamProfile]) -> None:
         self.profiles = profiles
@@ -211,9 +213,15 @@ class ProfileBank:
             nseg += 1
         self.base = np.array(bases)
         self.knots = np.concatenate(knots) if knots else np.zeros(1)
-        self.coef = np.concatenate(coefs) if coefs else np.zeros((1, 4))
-        self.first_seg = np.array(first, dtype=np.intp)
-        self.last_seg = np.array(last, dtype=np.intp)
+        # the segment tables one row down (an unused row 0): searchsorted(knots, g, "right")
+        # is then the row of g's segment itself, one subtraction less per evaluation
+        self.knot_rows = np.concatenate(([0.0], self.knots))
+        coefs.insert(0, np.zeros((1, 4)))
+        coef = np.concatenate(coefs)
+        # a fifth column 2 c2 (exact: a doubling) saves evaluate_rows two multiplications
+        self.coef = np.hstack((coef, 2.0 * coef[:, 2:3]))
+        self.first_seg = np.array(first, dtype=np.intp) + 1  # rows of knot_rows and coef
+        self.last_seg = np.array(last, dtype=np.intp) + 1
 
     def evaluate(
         self, prof: np.ndarray, local: np.ndarray
@@ -226,12 +234,16 @@ class ProfileBank:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """evaluate() with the per-row profile data gathered beforehand (base[prof], ...)."""
         g = local + base
-        i = np.searchsorted(self.knots, g, side="right") - 1
-        i = np.minimum(np.maximum(i, first), last)
-        u = g - self.knots[i]
+        # local >= 0 keeps g at or after the profile's first knot (base itself), so only the
+        # end needs a clamp: local = span may round onto the separator segment
+        i = np.minimum(np.searchsorted(self.knots, g, side="right"), last)
+        u = g - self.knot_rows[i]
         c = self.coef[i]
-        c0, c1, c2, c3 = c[:, 0], c[:, 1], c[:, 2], c[:, 3]
+        c0, c1, c2, c3, c2x2 = c[:, 0], c[:, 1], c[:, 2], c[:, 3], c[:, 4]
         pos = c0 + u * (c1 + u * (c2 + u * c3))
-        vel = c1 + u * (2.0 * c2 + 3.0 * u * c3)
-        acc = 2.0 * c2 + 6.0 * u * c3
+        # vel = c1 + u (2 c2 + 3 u c3), acc = 2 c2 + 6 u c3, with 6 u c3 = 2 (3 u c3):
+        # doublings are exact, so these are the same numbers with fewer operations
+        m = 3.0 * u * c3
+        vel = c1 + u * (c2x2 + m)
+        acc = c2x2 + (m + m)
         return pos, vel, acc

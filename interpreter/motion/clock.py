@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from interpreter.motion.enums import LockDirection, MasterReference
+from interpreter.motion.rotary import travel
 
 
 @dataclass(slots=True)
@@ -25,17 +27,25 @@ class MasterClock:
     peak: float = 0.0
     following: bool = False
     value: float = 0.0
+    unwind: float = 0.0  # the master's unwind (0: linear); prev and start are then unwrapped
 
     def advance(self, pos: float) -> float:
         """Feed the master position of this update; returns the master distance."""
         ld = self.lock_direction
-        prev, self.prev = self.prev, pos
+        prev = self.prev
+        u = self.unwind
+        if u > 0.0 and prev is not None:  # a rotary master: count travel through the wrap
+            pos = prev + travel(pos, prev, u)
+        self.prev = pos
         if self.start is None:
             if ld in (LockDirection.POSITION_FORWARD, LockDirection.POSITION_REVERSE):
                 lp = self.lock_position
+                forward = ld == LockDirection.POSITION_FORWARD
+                if u > 0.0:  # a rotary master passes the lock position once per revolution
+                    turns = math.floor if forward else math.ceil
+                    lp += u * turns((pos - lp) / u)
                 crossed = prev is not None and (
-                    (ld == LockDirection.POSITION_FORWARD and prev < lp <= pos)
-                    or (ld == LockDirection.POSITION_REVERSE and prev > lp >= pos)
+                    (forward and prev < lp <= pos) or (not forward and prev > lp >= pos)
                 )
                 if not crossed:
                     return 0.0

@@ -18,6 +18,9 @@ class ProfileShape(IntEnum):
 class MoveType(IntEnum):
     ABSOLUTE = 0
     INCREMENTAL = 1
+    ROTARY_SHORTEST_PATH = 2  # the rotary types need a rotary axis (else error 17)
+    ROTARY_POSITIVE = 3
+    ROTARY_NEGATIVE = 4
 
 
 class MergeMode(IntEnum):

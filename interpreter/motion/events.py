@@ -9,6 +9,7 @@ the position when armed does not fire until it comes back and crosses it
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -21,6 +22,7 @@ from interpreter.motion.process import (
     Events,
     MotionlessSet,
 )
+from interpreter.motion.rotary import travel
 
 if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the class
     from interpreter.motion.group import MotionGroup
@@ -33,6 +35,7 @@ class Watch:
     position: float
     forward: bool
     last: float  # actual position at arming, then at the latest update
+    unwind: float = 0.0  # rotary axis: `last` counts on through the wrap (unwrapped)
 
 
 @dataclass(slots=True)
@@ -61,7 +64,11 @@ class WatchSet(MotionlessSet):
         """Fire (COMPLETE) and disarm every watch whose position was passed this update."""
         for axis, w in list(self.armed.items()):
             now = float(actual[axis])
-            hit = w.last < w.position <= now if w.forward else w.last > w.position >= now
+            p, u = w.position, w.unwind
+            if u > 0.0:  # a rotary axis passes the watch position once per revolution
+                now = w.last + travel(now, w.last, u)
+                p += u * (math.floor if w.forward else math.ceil)((now - p) / u)
+            hit = w.last < p <= now if w.forward else w.last > p >= now
             w.last = now
             if hit:
                 del self.armed[axis]
@@ -74,7 +81,8 @@ class WatchSet(MotionlessSet):
 def arm_watch(group: MotionGroup, axis: int, position: float, forward: bool) -> StartResult:
     """MAW: arm a watch on the actual position; a watch armed earlier on the axis ends."""
     h = group.new_handle()
-    old = group.watch.arm(Watch(h, axis, position, forward, float(group.actual_position[axis])))
+    at = float(group.actual_position[axis])
+    old = group.watch.arm(Watch(h, axis, position, forward, at, float(group.unwind[axis])))
     if old is not None:
         group.after_update(lambda ev: ev.append((old.handle, EventKind.ENDED, axis)))
     return StartResult(handle=h)

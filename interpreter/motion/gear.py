@@ -32,6 +32,7 @@ from interpreter.motion.process import (
     Events,
     LevelSel,
 )
+from interpreter.motion.rotary import travel_array
 
 if TYPE_CHECKING:  # the group calls start_gear; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -48,10 +49,12 @@ class GearSet:
         self.ratio = np.zeros(0)  # signed: the direction is applied
         self.accel = np.zeros(0)  # clutch acceleration (inf: no clutch)
         self.prev = np.zeros(0)  # master position at the previous update
+        self.m_unwind = np.zeros(0)  # the master's unwind (0: linear): travel through the wrap
         self.v = np.zeros(0)  # the gear's own contribution to the slave velocity
         self.a = np.zeros(0)
         self.locked = np.zeros(0, dtype=bool)
         self.last_dir: dict[int, int] = {}  # slave -> +1 same, -1 opposite (absent: none yet)
+        self._idle_status: dict[str, np.ndarray] | None = None  # read-only, shared
 
     def __len__(self) -> int:
         return len(self.handle)
@@ -68,6 +71,7 @@ class GearSet:
         master_pos: float,
         master_vel: float,
         v0: float = 0.0,
+        master_unwind: float = 0.0,
     ) -> None:
         """Engage a gear at this update: travel counts from master_pos; the gear starts at
         velocity v0 (the velocity of a gear it replaces) and is locked at once when that is
@@ -82,6 +86,7 @@ class GearSet:
         self.ratio = np.append(self.ratio, ratio)
         self.accel = np.append(self.accel, accel)
         self.prev = np.append(self.prev, master_pos)
+        self.m_unwind = np.append(self.m_unwind, master_unwind)
         self.v = np.append(self.v, v)
         self.a = np.append(self.a, 0.0)
         self.locked = np.append(self.locked, locked)
@@ -118,7 +123,18 @@ class GearSet:
         if len(rows):
             keep = np.ones(len(self), dtype=bool)
             keep[rows] = False
-            for name in ("handle", "slave", "master", "ref", "ratio", "accel", "prev", "v", "a"):
+            for name in (
+                "handle",
+                "slave",
+                "master",
+                "ref",
+                "ratio",
+                "accel",
+                "prev",
+                "m_unwind",
+                "v",
+                "a",
+            ):
                 setattr(self, name, getattr(self, name)[keep])
             self.locked = self.locked[keep]
         return out
@@ -139,6 +155,12 @@ class GearSet:
 
     def status(self, n: int) -> dict[str, np.ndarray]:
         """GearingStatus (geared) and GearingLockStatus (clutch done)."""
+        if not len(self.slave):  # no gear: the same all-clear arrays every update
+            idle = self._idle_status
+            if idle is None or len(idle["GearingStatus"]) != n:
+                off = np.zeros(n, dtype=bool)
+                idle = self._idle_status = {"GearingStatus": off, "GearingLockStatus": off}
+            return idle
         gear = np.zeros(n, dtype=bool)
         gear[self.slave] = True
         lock = np.zeros(n, dtype=bool)
@@ -177,7 +199,8 @@ class GearSet:
         reach = np.abs(dv) <= room * (1.0 + 1e-9) + 1e-12  # the last ramp step, up to rounding
         with np.errstate(invalid="ignore"):
             v_ramp = np.where(reach, target, v_old + np.sign(dv) * room)
-        dp = np.where(locked, ratio * (m - self.prev[rows]), 0.5 * (v_old + v_ramp) * cup)
+        moved = travel_array(m, self.prev[rows], self.m_unwind[rows])
+        dp = np.where(locked, ratio * moved, 0.5 * (v_old + v_ramp) * cup)
         vel = np.where(locked, target, v_ramp)
         acc = (vel - v_old) / cup
         self.prev[rows] = m
@@ -232,7 +255,10 @@ def start_gear(
             mpos, mvel = group.actual_position[master], group.actual_velocity[master]
         else:
             mpos, mvel = group.command_position[master], group.command_velocity[master]
-        gears.add(h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0)
+        gears.add(
+            h, slave, master, ref, sign * ratio, clutch_accel, float(mpos), float(mvel), v0,
+            float(group.unwind[master]),
+        )  # fmt: skip
         group.levels_changed()
         ev.append((h, EventKind.IN_PROCESS, slave))
 

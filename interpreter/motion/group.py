@@ -43,6 +43,7 @@ from interpreter.motion.homing import HomingSet, home
 from interpreter.motion.links import LinkTable, MasterLink, assign_master
 from interpreter.motion.moves import (
     change_dynamics,
+    check_rotary_move,
     end_gen,
     generator_profile,
     running_limits,
@@ -51,7 +52,13 @@ from interpreter.motion.moves import (
     stop,
     stop_group,
 )
+from interpreter.motion.outputcams import (
+    OutputCamProcessSet,
+    arm_output_cam,
+    disarm_output_cam,
+)
 from interpreter.motion.process import Ending, EndReason, ProcessSet
+from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
 from stdlib import catalog
@@ -124,11 +131,19 @@ class MotionGroup:
         self.watch = WatchSet()  # MAW watch-position events
         self.virtual = np.zeros(0, dtype=bool)
         self.tau = np.zeros(0)
+        # Rotary axes (decision 0115): unwind per axis, position units per revolution; 0.0
+        # is a linear axis. Command and actual positions of a rotary axis stay in
+        # [0, unwind): both are wrapped at the end of every update, before the sets'
+        # end_update; differences of positions go through rotary.travel (short way round).
+        self.unwind = np.zeros(0)
+        self._rotary = np.zeros(0, dtype=np.intp)  # indices of the rotary axes
         self._alpha = np.zeros(0)
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
         self._levels_dirty = False
-        self.status: dict[str, np.ndarray] = {}
+        # AXIS status members per axis, computed when read after an update (`status`)
+        self._status: dict[str, np.ndarray] = {}
+        self._status_stale = False
         # moves, jogs and stops; ending one goes through moves.end_gen (MGS bookkeeping)
         self.moves = ProfileSet(lambda g, kind, ev: end_gen(self, g, kind, ev))
         self._cams = TimeCamSet()
@@ -138,6 +153,7 @@ class MotionGroup:
         self._links = LinkTable()  # MDAC master assignments
         self._gears = GearSet()
         self._homing = HomingSet()
+        self.output_cams = OutputCamProcessSet(self)  # MAOC/MDOC: after the axes moved
         # every kind of motion process, stepped in this order at each level (decision 0104)
         self._sets: list[ProcessSet] = [
             self.moves,
@@ -146,8 +162,10 @@ class MotionGroup:
             self.watch,
             self._homing,
             self._links,
+            self.output_cams,
         ]
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
+        self.shifted = False  # some shift is not 0 (spares resetting and testing the array)
 
     @property
     def _gens(self) -> list[ProfileGen]:
@@ -158,6 +176,7 @@ class MotionGroup:
     generator_profile = generator_profile
     running_limits = running_limits
     start_move = start_move
+    check_rotary_move = check_rotary_move
     start_jog = start_jog
     stop = stop
     stop_group = stop_group
@@ -166,6 +185,8 @@ class MotionGroup:
     arm_registration = arm_registration
     disarm_registration = disarm_registration
     change_dynamics = change_dynamics
+    arm_output_cam = arm_output_cam
+    disarm_output_cam = disarm_output_cam
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""
@@ -185,8 +206,9 @@ class MotionGroup:
         max_decel: float = 1000.0,
         max_accel_jerk: float = math.inf,
         max_decel_jerk: float = math.inf,
+        unwind: float = 0.0,
     ) -> int:
-        """Add an axis (before running); returns its index."""
+        """Add an axis (before running); returns its index. unwind > 0: a rotary axis."""
         self.axes.append(
             AxisConfig(name, kind, max_speed, max_accel, max_decel, max_accel_jerk, max_decel_jerk)
         )
@@ -201,13 +223,26 @@ class MotionGroup:
         self.direct_drive = np.append(self.direct_drive, False)
         self.virtual = np.append(self.virtual, virtual)
         self.tau = np.append(self.tau, 0.0 if virtual else tau)
+        self.unwind = np.append(self.unwind, 0.0)
         self._alpha = lag_alpha(self.tau, self.cup)
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
+        st = self.status
         for name_ in STATUS_BITS:
-            self.status[name_] = np.zeros(len(self.axes), dtype=bool)
-        self.status["ServoActionStatus"] = self.servo_on.copy()
+            st[name_] = np.zeros(len(self.axes), dtype=bool)
+        st["ServoActionStatus"] = self.servo_on.copy()
+        self.set_unwind(len(self.axes) - 1, unwind)
         return len(self.axes) - 1
+
+    def set_unwind(self, axis: int, unwind: float) -> None:
+        """Make the axis rotary with this unwind (position units per revolution), or
+        linear with 0; its positions are wrapped into [0, unwind) at once."""
+        if not (math.isfinite(unwind) and unwind >= 0.0):
+            raise ValueError("unwind must be finite and >= 0")
+        self.unwind[axis] = unwind
+        self._rotary = np.flatnonzero(self.unwind > 0.0)
+        self.command_position[axis] = wrap(float(self.command_position[axis]), unwind)
+        self.actual_position[axis] = wrap(float(self.actual_position[axis]), unwind)
 
     def axis_index(self, name: str) -> int:
         for i, a in enumerate(self.axes):
@@ -217,8 +252,20 @@ class MotionGroup:
 
     def set_position(self, axis: int, position: float) -> None:
         """Redefine command and actual position (for set-up and MRP-like use)."""
-        self.command_position[axis] = position
-        self.actual_position[axis] = position
+        u = float(self.unwind[axis])
+        self.command_position[axis] = wrap(position, u)
+        self.actual_position[axis] = wrap(position, u)
+
+    @property
+    def status(self) -> dict[str, np.ndarray]:
+        """AXIS status members (bool per axis) as of the latest update. The bits the group
+        derives from velocity and acceleration are computed when first read after it: the
+        runtime reads them right after the updates due before a scan, and only when a
+        status member is demanded (decision 0104), so most updates never build them."""
+        if self._status_stale:
+            self._status_stale = False
+            self._motion_bits()
+        return self._status
 
     def motion_status_word(self) -> np.ndarray:
         """MotionStatus DINT bits per axis from the status arrays."""
@@ -354,7 +401,9 @@ class MotionGroup:
         self, link: MasterLink, lock_direction: LockDirection, lock_position: float
     ) -> MasterClock:
         ref = self.effective_reference(link.master, link.reference)
-        return MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
+        clock = MasterClock(link.master, ref, LockDirection(lock_direction), lock_position)
+        clock.unwind = float(self.unwind[link.master])
+        return clock
 
     def master_state(self, clock: MasterClock) -> tuple[float, float]:
         m = clock.master
@@ -389,9 +438,11 @@ class MotionGroup:
     def shift_position(self, axis: int, delta: float) -> None:
         """Add delta to the axis's positions; whatever follows this axis as a master keeps
         counting travel, not positions, so its slaves do not see the jump."""
-        self.command_position[axis] += delta
-        self.actual_position[axis] += delta
+        u = float(self.unwind[axis])
+        self.command_position[axis] = wrap(float(self.command_position[axis]) + delta, u)
+        self.actual_position[axis] = wrap(float(self.actual_position[axis]) + delta, u)
         self.shift[axis] += delta
+        self.shifted = True
         for ps in self._sets:
             ps.shift_master(axis, delta)
 
@@ -457,7 +508,9 @@ class MotionGroup:
         """Advance every axis one coarse update; returns the events of this update."""
         ev: list[tuple[int, EventKind, int]] = []
         self.time = self.updates * self.cup  # updates happen at 0, cup, 2 cup, ...
-        self.shift[:] = 0.0
+        if self.shifted:
+            self.shift[:] = 0.0
+            self.shifted = False
         pre, self._pre = self._pre, []
         for f in pre:
             f(ev)
@@ -472,24 +525,41 @@ class MotionGroup:
         positions = (self.actual_position, self.command_position)
         velocities = (self.actual_velocity, self.command_velocity)
         single = self._max_level == 0
+        rot = len(self._rotary) > 0
         for lvl in range(self._max_level + 1):
             sel = None if single else (self._level, lvl)
             parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
             parts = [c for c in parts if len(c.axis)]
             idx: np.ndarray | slice = slice(None) if single else np.flatnonzero(self._level == lvl)
             if parts:
-                axes = np.concatenate([c.axis for c in parts])
-                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
-                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
-                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
+                if len(parts) == 1:  # one kind of motion running: nothing to join
+                    c = parts[0]
+                    axes, dpos, vel, acc = c.axis, c.dpos, c.vel, c.acc
+                else:
+                    axes = np.concatenate([c.axis for c in parts])
+                    dpos = np.concatenate([c.dpos for c in parts])
+                    vel = np.concatenate([c.vel for c in parts])
+                    acc = np.concatenate([c.acc for c in parts])
+                dpos = np.bincount(axes, dpos, n)
+                vel = np.bincount(axes, vel, n)
+                acc = np.bincount(axes, acc, n)
                 self.command_position += dpos
                 self.command_velocity[idx] = vel[idx]
                 self.command_acceleration[idx] = acc[idx]
             else:
                 self.command_velocity[idx] = 0.0
                 self.command_acceleration[idx] = 0.0
+            if rot:  # the servo follows the command the short way round the wrap
+                self._align_actual()
             servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
-            self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
+            if rot:
+                moved = travel_array(self.actual_position, prev_actual, self.unwind)
+                self.actual_velocity[idx] = moved[idx] / cup
+            else:
+                self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
+        if rot:
+            wrap_array(self.command_position, self.unwind, self._rotary)
+            wrap_array(self.actual_position, self.unwind, self._rotary)
         for ps in sets:
             ps.end_update(self.actual_position, ev)
         post, self._post = self._post, []
@@ -503,15 +573,31 @@ class MotionGroup:
         self._update_status()
         return [MotionEvent(h, k, a) for h, k, a in ev]
 
+    def _align_actual(self) -> None:
+        """Put each rotary axis's actual position within half an unwind of its command
+        (the command may have crossed the wrap since both were last wrapped)."""
+        r, u = self._rotary, self.unwind[self._rotary]
+        cmd, act = self.command_position[r], self.actual_position[r]
+        d = cmd - act
+        self.actual_position[r] = cmd - (d - u * np.floor(d / u + 0.5))
+
     def _update_status(self) -> None:
+        """At the end of an update: the sets' status members (asking them is part of the
+        update: a time cam set settles its axis claims then) and the servo state; the
+        velocity bits follow when read (`status`)."""
         n = len(self.axes)
-        st = self.status
+        st = self._status
+        for ps in self._sets:
+            st.update(ps.status(n))
+        st["ServoActionStatus"] = self.servo_on.copy()
+        st["ShutdownStatus"] = self.shutdown.copy()
+        self._status_stale = True
+
+    def _motion_bits(self) -> None:
+        """AccelStatus, DecelStatus and MaximumSpeedExceeded of the latest update."""
+        st = self._status
         v, a = self.command_velocity, self.command_acceleration
         moving = np.abs(v) > _VEL_EPS
         st["AccelStatus"] = (v * a > _VEL_EPS) | (~moving & (np.abs(a) > _VEL_EPS))
         st["DecelStatus"] = v * a < -_VEL_EPS
-        for ps in self._sets:
-            st.update(ps.status(n))
         st["MaximumSpeedExceeded"] = np.abs(v) > np.array([c.max_speed for c in self.axes])
-        st["ServoActionStatus"] = self.servo_on.copy()
-        st["ShutdownStatus"] = self.shutdown.copy()

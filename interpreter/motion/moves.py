@@ -28,6 +28,7 @@ from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.generators import GroupStop, ProfileGen
 from interpreter.motion.process import Ending
 from interpreter.motion.profiles import Limits, MoveProfile, plan_jog, plan_move, plan_stop
+from interpreter.motion.rotary import rotary_travel
 
 if TYPE_CHECKING:  # bound as MotionGroup methods; only the annotations need the class
     from interpreter.motion.group import MotionGroup
@@ -74,11 +75,16 @@ def start_move(
     lock_direction: int = LockDirection.NONE,
     master_driven: bool = False,
 ) -> StartResult:
-    """MAM: absolute or incremental move; EXERR indices follow the MAM faceplate."""
-    if move_type not in (0, 1):
+    """MAM: absolute, incremental or (on a rotary axis) rotary shortest path, positive
+    or negative move; EXERR indices follow the MAM faceplate."""
+    if move_type not in MoveType.__members__.values():
         return bad_operand(2)
     if not math.isfinite(position):
         return bad_operand(3)
+    if move_type >= MoveType.ROTARY_SHORTEST_PATH:
+        bad = check_rotary_move(group, axis, move_type, position)
+        if not bad.ok:
+            return bad
     err = check_dynamics(group,
         speed, accel, decel, profile, accel_jerk, decel_jerk, merge, merge_speed,
         lock_direction, master_driven, axis, MotionType.MOVE, first=4, step=2,
@@ -102,10 +108,7 @@ def start_move(
             LockDirection(lock_direction),
             lock_position,
         )
-        if move_type == MoveType.ABSOLUTE:
-            dist = position - float(group.command_position[axis])
-        else:  # an incremental move adds to the end point of the move it replaces
-            dist = position + remaining
+        dist = move_distance(group, axis, move_type, position, remaining)
         use = lim
         if merge_speed == MergeSpeed.CURRENT and abs(v0) > _VEL_EPS:
             use = Limits(abs(v0), lim.accel, lim.decel, lim.accel_jerk, lim.decel_jerk)
@@ -115,6 +118,35 @@ def start_move(
 
     group.after_update(apply)
     return StartResult(handle=h)
+
+
+def check_rotary_move(
+    group: MotionGroup, axis: int, move_type: int, position: float
+) -> StartResult:
+    """A rotary move type needs a rotary axis (error 17) and a target on the circle,
+    0 <= Position < unwind (error 13, the Position operand)."""
+    unwind = float(group.unwind[axis])
+    if unwind == 0.0:
+        return StartResult(error=MotionError.AXIS_MODE_NOT_ROTARY)
+    if not 0.0 <= position < unwind:
+        return bad_operand(3)
+    return StartResult()
+
+
+def move_distance(
+    group: MotionGroup, axis: int, move_type: int, position: float, remaining: float = 0.0
+) -> float:
+    """Travel of a MAM planned from the axis's command position now. Absolute: to the
+    position (on a rotary axis too: it is read as a point of the unwound axis, so a
+    target beyond the unwind or below 0 turns more than once or backwards); incremental:
+    by the position plus what the replaced move still had to go; rotary types: the short,
+    forward or reverse way round (rotary.rotary_travel)."""
+    current = float(group.command_position[axis])
+    if move_type == MoveType.ABSOLUTE:
+        return position - current
+    if move_type == MoveType.INCREMENTAL:
+        return position + remaining
+    return rotary_travel(move_type, position, current, float(group.unwind[axis]))
 
 
 def start_jog(

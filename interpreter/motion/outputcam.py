@@ -11,6 +11,7 @@ Design and readings of the reference: docs/decisions/0107-output-cam-core.md.
 from __future__ import annotations
 
 import math
+from bisect import bisect_left, bisect_right
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -117,6 +118,15 @@ class _Cam:
     inside: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
     sync_inside: bool = True  # take `inside` from the position (arming, re-entry)
     pulse_origin: np.ndarray = field(default_factory=lambda: np.zeros(BITS))
+    # the quiet interval (decision 0114): evaluated at velocity vref, no compensated level
+    # lies strictly between gap_lo and gap_hi around c; nothing is due before t_due; the
+    # enable words were `words`. nan vref: evaluate exactly at the next update.
+    vref: float = math.nan
+    gap_lo: float = -math.inf
+    gap_hi: float = math.inf
+    t_due: float = math.inf
+    pulsing: bool = False
+    words: tuple[int, int] = (0, 0)
 
     def __post_init__(self) -> None:
         n = len(self.req.elements)
@@ -171,6 +181,9 @@ class OutputCamSet:
         self._bank: _Bank | None = None
         self._dirty = True  # cams, their lock/range state or a compensation changed
         self.batch = batch  # False: every cam through the exact path (tests compare both)
+        # a target's armed/pending/lock/transition state changed (the status words); the
+        # binding clears it when it has written them
+        self.status_changed = True
 
     def _quiet(
         self,
@@ -181,94 +194,83 @@ class OutputCamSet:
         unwind: np.ndarray | None,
         velocity: np.ndarray | None,
         time_of: dict[tuple[int, int], TimeOf] | None,
-    ) -> set[int]:
-        """One numpy pass over every element of every running cam: cams in which nothing
-        switches this update only move their cam position (ids of their targets returned);
-        the others go through the exact per-cam evaluation."""
+        step: OutputCamStep,
+    ) -> list[OutputCamTarget] | None:
+        """The targets that need the exact evaluation this update (None: all of them).
+
+        A running cam is quiet when its travel, widened by how far a velocity change can move
+        its compensated levels, stays inside its quiet interval, nothing of it is due and its
+        enable words did not change: then only its cam position moves, in one numpy pass over
+        the cams (decision 0114). The others go through the exact per-cam evaluation."""
         if time_of or not self.batch:
-            return set()
+            return None
         if self._dirty or self._bank is None:
-            rows = [
-                t
-                for t in self.targets.values()
-                if t.cam is not None
-                and t.request is None
-                and not t.dropped
-                and t.cam.locked
-                and t.cam.in_range
-            ]
-            self._bank = _Bank(rows)
+            if self._bank is not None:
+                self._bank.store()
+            rows = []
+            others = []
+            for t in self.targets.values():
+                cam = t.cam
+                if (
+                    cam is not None
+                    and t.request is None
+                    and not t.dropped
+                    and cam.locked
+                    and cam.in_range
+                ):
+                    rows.append(t)
+                else:
+                    others.append(t)
+            self._bank = _Bank(rows, others)
             self._dirty = False
         b = self._bank
-        rows = b.rows
-        if not rows:
-            return set()
-        cams = [t.cam for t in rows if t.cam is not None]
-        c = np.fromiter((cam.c for cam in cams), np.float64, len(cams))
-        x0 = start[b.ref, b.axis]
-        dx = end[b.ref, b.axis] - x0
+        if not b.rows:
+            return b.others
+        c = b.c
+        ref, axis = b.ref, b.axis
+        x0 = start[ref, axis]
+        dx = end[ref, axis] - x0
         if unwind is not None:
-            u = unwind[b.axis]
-            dx = np.where(u > 0, (dx + u / 2) % np.where(u > 0, u, 1.0) - u / 2, dx)
-        v = velocity[b.ref, b.axis] if velocity is not None else dx / dt
+            u = unwind[axis]
+            if u.any():
+                dx = np.where(u > 0, (dx + u / 2) % np.where(u > 0, u, 1.0) - u / 2, dx)
         cb = c + dx
-        pending = np.fromiter((t.pending is not None for t in rows), bool, len(rows))
-        leaves = (cb > b.end) | (cb < b.start)
-        busy_cam = leaves & (np.logical_not(b.periodic) | pending)
-        # element level
-        r = b.row
-        ca_e, cb_e, v_e = c[r], cb[r], v[r]
-        fwd = v_e >= 0
-        lo_f = b.left - v_e * b.ld
-        hi_f = np.maximum(b.right - v_e * b.ud, lo_f + self.min_width)
-        hi_r = b.right - v_e * b.ld
-        lo_r = np.minimum(b.left - v_e * b.ud, hi_r - self.min_width)
-        lo = np.where(fwd, lo_f, lo_r)
-        hi = np.where(fwd, hi_f, hi_r)
-        per = b.period_e
-        # inside at the start (replicated windows for periodic cams), and a level crossed
-        # in the travel [ca, cb] (ends included: ties go the exact way)
-        a_, z_ = np.minimum(ca_e, cb_e), np.maximum(ca_e, cb_e)
-        inside0 = cross_lo = cross_hi = np.zeros(0, bool)
-        if b.all_periodic or b.any_periodic:
-            k0 = np.floor((ca_e - lo) / per)
-            inside0 = ca_e - (lo + k0 * per) <= hi - lo
-            cross_lo = np.floor((z_ - lo) / per) >= np.ceil((a_ - lo) / per)
-            cross_hi = np.floor((z_ - hi) / per) >= np.ceil((a_ - hi) / per)
-        if not b.all_periodic:
-            pe = b.periodic_e
-            inside_np = (lo <= ca_e) & (ca_e <= hi)
-            lo_np = (a_ <= lo) & (lo <= z_)
-            hi_np = (a_ <= hi) & (hi <= z_)
-            if b.any_periodic:
-                inside0 = np.where(pe, inside0, inside_np)
-                cross_lo = np.where(pe, cross_lo, lo_np)
-                cross_hi = np.where(pe, cross_hi, hi_np)
-            else:
-                inside0, cross_lo, cross_hi = inside_np, lo_np, hi_np
-        busy = (inside0 != b.inside) | ((cross_lo | cross_hi) & (dx[r] != 0))
-        busy |= b.on & (b.off_time <= t0 + dt)
-        if b.any_enable:
-            words_out = np.fromiter((t.output for t in rows), np.int64, len(rows))
-            words_in = np.fromiter((t.input for t in rows), np.int64, len(rows))
-            src = np.where(b.etype >= _E_OUTPUT, words_out[r], words_in[r])
-            en = (((src >> b.ebit) & 1).astype(bool)) ^ b.einv
-            busy |= b.uses_enable & (en != b.enable_prev)
-        busy_cam |= np.bincount(r[busy], minlength=len(rows)) > 0
-        for i in b.pulsed_rows:  # a pulse train runs while a pulsed bit is active
-            busy_cam[i] |= bool(cams[i].active.any())
-        c_new = np.where(
-            b.periodic & ((cb > b.end) | (cb < b.start)),
-            b.start + (cb - b.start) % b.span,
-            cb,
-        )
-        done: set[int] = set()
-        for i in np.flatnonzero(~busy_cam).tolist():
-            t = rows[i]
-            cams[i].c = float(c_new[i])
-            t.transition = False
-            done.add(id(t))
-        return done
+        low, high = np.minimum(c, cb), np.maximum(c, cb)
+        if b.any_delay:  # how far a velocity change moves the levels (nan vref: not quiet)
+            v = velocity[ref, axis] if velocity is not None else dx / dt
+            tol = np.abs(v - b.vref) * b.maxd
+            low -= tol
+            high += tol
+        quiet = (low > b.gap_lo) & (high < b.gap_hi) & (cb >= b.start) & (cb <= b.end)
+        if b.any_due:
+            quiet &= b.t_due > t0 + dt
+        for i in b.enable_rows:  # the program (or the cam) changed an enable word
+            t = b.rows[i]
+            cam = t.cam
+            if cam is not None and cam.words != (t.input, t.output):
+                quiet[i] = False
+        np.copyto(c, cb, where=quiet)
+        busy = np.flatnonzero(~quiet).tolist()
+        out = b.others.copy()
+        if busy:
+            in_range = (cb >= b.start) & (cb <= b.end)
+            for i in busy:
+                t = b.rows[i]
+                cam = t.cam
+                assert cam is not None
+                sim = b.simple[i]
+                if sim is not None and in_range[i] and not cam.sync_inside and not t.transition:
+                    # position windows only, no delays: crossings by bisection (0114)
+                    ca, cbi = float(c[i]), float(cb[i])
+                    _simple_step(t, cam, sim, ca, cbi, float(dx[i]), t0, dt, step)
+                    cam.c = cbi
+                    c[i] = cbi
+                    b.gap_lo[i], b.gap_hi[i] = sim.gap(cbi, cam)
+                    b.vref[i] = 0.0
+                    continue
+                cam.c = float(c[i])
+                out.append(t)
+        return out
 
     def target(self, axis: int, target: int) -> OutputCamTarget:
         key = (axis, target)
@@ -308,6 +310,7 @@ class OutputCamSet:
         if compensation is not None:
             t.compensation = compensation
         self._dirty = True
+        self.status_changed = True
         if sched == OutputCamExecutionSchedule.PENDING and busy:
             if t.pending is not None:  # a later pending MAOC replaces an earlier one
                 t.dropped.append(t.pending.handle)
@@ -332,6 +335,7 @@ class OutputCamSet:
         whose MAOC ends (IP cleared)."""
         ended: list[int] = []
         self._dirty = True
+        self.status_changed = True
         for (a, tg), t in self.targets.items():
             if a != axis or (disarm_type == DisarmType.SPECIFIC and tg != target):
                 continue
@@ -389,20 +393,28 @@ class OutputCamSet:
         (2, axes) velocity for the delay compensation (default: mean over the interval).
         time_of: exact inverse of the motion per (reference, axis), see TimeOf."""
         step = OutputCamStep([], [], {})
-        quiet = self._quiet(t0, dt, start, end, unwind, velocity, time_of)
-        for t in self.targets.values():
-            if id(t) in quiet:
-                continue
+        todo = self._quiet(t0, dt, start, end, unwind, velocity, time_of, step)
+        for t in self.targets.values() if todo is None else todo:
             before = _signature(t)
+            was = t.transition
             if t.cam is None and t.request is None:
                 t.transition = False
+                self.status_changed |= was
                 for h in t.dropped:
                     step.events.append(OutputCamEvent(h, ENDED, t0))
                 t.dropped.clear()
                 continue
-            _advance(self, t, t0, dt, start, end, unwind, velocity, time_of, step)
+            words = (t.input, t.output)  # the enable words this evaluation reads
+            v = _advance(self, t, t0, dt, start, end, unwind, velocity, time_of, step)
             if _signature(t) != before:
                 self._dirty = True
+                self.status_changed = True
+            elif t.transition != was:
+                self.status_changed = True
+            if self.batch and t.cam is not None:
+                _refresh(self, t, t.cam, v, words)
+                if self._bank is not None:  # also when dirty: store() must not undo it
+                    self._bank.reload(t)
         return step
 
 
@@ -414,62 +426,285 @@ def _signature(t: OutputCamTarget) -> tuple:
 
 
 class _Bank:
-    """Elements of all running cams laid end to end; the cams' state arrays become views
-    into the bank's arrays so both paths share one copy."""
+    """The running cams (locked, in range, nothing waiting) as per-cam arrays for the quiet
+    pass; `c` holds their cam positions (written back to the cams before an exact
+    evaluation and when the bank is rebuilt)."""
 
-    def __init__(self, rows: list[OutputCamTarget]) -> None:
+    def __init__(self, rows: list[OutputCamTarget], others: list[OutputCamTarget]) -> None:
         self.rows = rows
+        self.others = others
+        self.at = {id(t): i for i, t in enumerate(rows)}
         cams = [t.cam for t in rows if t.cam is not None]
         assert len(cams) == len(rows)
-        sizes = [len(c.req.elements) for c in cams]
-        self.row = np.repeat(np.arange(len(rows)), sizes)
-
-        def cat(get) -> np.ndarray:
-            parts = [get(t, t.cam) for t in rows]
-            return np.concatenate(parts) if parts else np.zeros(0)
-
-        self.left = cat(
-            lambda t, c: c.req.elements.left + t.compensation.offset[c.req.elements.bit]
-        )
-        self.right = cat(
-            lambda t, c: c.req.elements.right + t.compensation.offset[c.req.elements.bit]
-        )
-        self.ld = cat(lambda t, c: t.compensation.latch_delay[c.req.elements.bit])
-        self.ud = cat(lambda t, c: t.compensation.unlatch_delay[c.req.elements.bit])
-        self.etype = cat(lambda t, c: c.req.elements.enable_type).astype(np.int64)
-        self.ebit = cat(lambda t, c: c.req.elements.enable_bit).astype(np.int64)
-        self.einv = (self.etype == _E_INVERTED_INPUT) | (self.etype == _E_INVERTED_OUTPUT)
-        latch = cat(lambda t, c: c.req.elements.latch)
-        unlatch = cat(lambda t, c: c.req.elements.unlatch)
-        self.uses_enable = (
-            (latch == _L_ENABLE) | (latch == _L_POSITION_AND_ENABLE) | (unlatch >= _U_ENABLE)
-        )
-        self.any_enable = bool(self.uses_enable.any())
-        self.pulsed_rows = [
-            i for i, t in enumerate(rows) if bool((t.compensation.mode >= _M_PULSED).any())
-        ]
         self.axis = np.array([t.axis for t in rows], np.intp)
         self.ref = np.array([int(c.req.reference) for c in cams], np.intp)
         self.start = np.array([c.req.cam_start for c in cams])
         self.end = np.array([c.req.cam_end for c in cams])
-        self.span = self.end - self.start
-        self.periodic = np.array([c.periodic for c in cams], dtype=np.bool_)
-        self.periodic_e = self.periodic[self.row]
-        self.all_periodic = bool(self.periodic.all())
-        self.any_periodic = bool(self.periodic.any())
-        self.period_e = np.where(self.periodic_e, self.span[self.row], 1.0)
-        # shared state: concatenate, then hand each cam its slice as a view
-        self.on = cat(lambda t, c: c.on).astype(bool)
-        self.off_time = cat(lambda t, c: c.off_time).astype(float)
-        self.inside = cat(lambda t, c: c.inside).astype(bool)
-        self.enable_prev = cat(lambda t, c: c.enable_prev).astype(bool)
-        edges = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
-        for c, a, z in zip(cams, edges[:-1], edges[1:], strict=True):
-            assert c is not None
-            c.on = self.on[a:z]
-            c.off_time = self.off_time[a:z]
-            c.inside = self.inside[a:z]
-            c.enable_prev = self.enable_prev[a:z]
+        self.c = np.array([c.c for c in cams])
+        self.vref = np.array([c.vref for c in cams])
+        self.gap_lo = np.array([c.gap_lo for c in cams])
+        self.gap_hi = np.array([c.gap_hi for c in cams])
+        self.t_due = np.array([-math.inf if c.pulsing else c.t_due for c in cams])
+        # nan vref (never evaluated) must also fail the test: a nan tolerance does that
+        self.maxd = np.array([_max_delay(t) for t in rows])
+        self.any_delay = bool(self.maxd.any()) or bool(np.isnan(self.vref).any())
+        self.simple = [_Simple.of(t) for t in rows]
+        for i, sim in enumerate(self.simple):  # their quiet interval does not need v
+            cam = cams[i]
+            if sim is not None and not cam.sync_inside and not rows[i].transition:
+                self.gap_lo[i], self.gap_hi[i] = sim.gap(cam.c, cam)
+                self.vref[i] = 0.0
+        self.any_due = bool((self.t_due < math.inf).any())  # a duration or a pulse train
+        self.enable_rows = [i for i, c in enumerate(cams) if _uses_enable(c.req.elements)]
+        self.any_delay = bool(self.maxd.any()) or bool(np.isnan(self.vref).any())
+
+    def reload(self, t: OutputCamTarget) -> None:
+        """A cam of the bank was evaluated exactly: take its new position and interval."""
+        i = self.at.get(id(t))
+        cam = t.cam
+        if i is None or cam is None:
+            return
+        self.c[i] = cam.c
+        self.vref[i] = cam.vref
+        self.gap_lo[i] = cam.gap_lo
+        self.gap_hi[i] = cam.gap_hi
+        self.t_due[i] = due = -math.inf if cam.pulsing else cam.t_due
+        self.any_due |= due < math.inf
+        self.any_delay |= math.isnan(cam.vref)
+
+    def store(self) -> None:
+        """Hand the cam positions back to the cams (before a rebuild)."""
+        for t, c in zip(self.rows, self.c.tolist(), strict=True):
+            if t.cam is not None:
+                t.cam.c = c
+
+
+@dataclass(slots=True)
+class _Simple:
+    """A cam whose elements are all Position latch / Position unlatch windows on bits with
+    no delays and a Normal or Inverted mode: its levels do not depend on the velocity, so
+    crossings are found by bisection in the sorted levels (decision 0114)."""
+
+    lo: list[float]  # sorted left levels (forward latch) ...
+    lo_el: list[int]  # ... and their elements
+    hi: list[float]
+    hi_el: list[int]
+    period: float  # the range span for a continuous cam, else inf
+    bit: list[int]  # output bit of each element
+    by_bit: dict[int, list[int]]  # elements of each bit
+
+    @staticmethod
+    def of(t: OutputCamTarget) -> _Simple | None:
+        cam = t.cam
+        if cam is None:
+            return None
+        el = cam.req.elements
+        comp = t.compensation
+        if not len(el) or not ((el.latch == _L_POSITION) & (el.unlatch == _U_POSITION)).all():
+            return None
+        b = el.bit
+        if (comp.latch_delay[b] != 0).any() or (comp.unlatch_delay[b] != 0).any():
+            return None
+        if (comp.mode[b] > _M_INVERTED).any():
+            return None
+        lo = el.left + comp.offset[b]
+        hi = el.right + comp.offset[b]
+        if not (hi > lo).all():  # the minimum width would change the windows
+            return None
+        start, end = cam.req.cam_start, cam.req.cam_end
+        period = math.inf
+        elems = np.arange(len(el))
+        if cam.periodic:
+            # a continuous cam's levels repeat every span: the copies one span below and
+            # above cover every crossing inside the range when the levels lie within a span
+            # of it (the values are computed as _levels computes them)
+            period = end - start
+            if not ((lo >= start - period) & (hi <= end + period)).all():
+                return None
+            lo = np.concatenate((lo + -1 * period, lo, lo + 1 * period))
+            hi = np.concatenate((hi + -1 * period, hi, hi + 1 * period))
+            elems = np.tile(elems, 3)
+        lo_order = np.argsort(lo, kind="stable")
+        hi_order = np.argsort(hi, kind="stable")
+        bits = [int(x) for x in b.tolist()]
+        by_bit: dict[int, list[int]] = {}
+        for e, bit in enumerate(bits):
+            by_bit.setdefault(bit, []).append(e)
+        return _Simple(
+            lo[lo_order].tolist(), elems[lo_order].tolist(), hi[hi_order].tolist(),
+            elems[hi_order].tolist(), period, bits, by_bit,
+        )  # fmt: skip
+
+    def gap(self, c: float, cam: _Cam) -> tuple[float, float]:
+        """The quiet interval around cam position c: the nearest levels at or below / above."""
+        below = -math.inf
+        above = math.inf
+        for levels in (self.lo, self.hi):  # (with their copies a span away when continuous)
+            k = bisect_right(levels, c)
+            if k:
+                below = max(below, levels[k - 1])
+            k = bisect_left(levels, c)
+            if k < len(levels):
+                above = min(above, levels[k])
+        return below, above
+
+
+def _simple_step(
+    t: OutputCamTarget,
+    cam: _Cam,
+    sim: _Simple,
+    ca: float,
+    cb: float,
+    dx: float,
+    t0: float,
+    dt: float,
+    step: OutputCamStep,
+) -> None:
+    """The exact evaluation of a _Simple cam over a travel that stays in its range, with the
+    same crossing rules and tie order as _evaluate: moving forward a window is entered at
+    its left level in (ca, cb] and left at its right level in [ca, cb); in reverse entered
+    at the right level in [cb, ca) and left at the left level in (cb, ca]."""
+    lo, hi = sim.lo, sim.hi
+    found: list[tuple[int, float, int, float]] = []  # (element, travel, kind, level)
+    if cb > ca:
+        enter = (bisect_right(lo, ca), bisect_right(lo, cb), lo, sim.lo_el)
+        leave = (bisect_left(hi, ca), bisect_left(hi, cb), hi, sim.hi_el)
+        sign = 1.0
+    else:
+        enter = (bisect_left(hi, cb), bisect_left(hi, ca), hi, sim.hi_el)
+        leave = (bisect_right(lo, cb), bisect_right(lo, ca), lo, sim.lo_el)
+        sign = -1.0
+    for (a, z, levels, elems), kind in ((enter, _ENTER), (leave, _EXIT)):
+        for k in range(a, z):
+            y = levels[k]
+            found.append((elems[k], (y - ca) * sign, kind, y))
+    if not found:
+        return
+    found.sort()
+    bit_of = sim.bit
+    # elements on per bit before the switches (only the bits concerned)
+    counts = {}
+    for e, _, _, _ in found:
+        b = bit_of[e]
+        if b not in counts:
+            counts[b] = sum(1 for x in sim.by_bit[b] if cam.on[x])
+    switches: list[tuple[float, int, int, bool]] = []
+    on = cam.on
+    inside = cam.inside
+    seq = 0
+    for e, _, kind, y in found:
+        when = t0 + (y - ca) / dx * dt
+        if kind == _ENTER:
+            inside[e] = True
+            if not on[e]:
+                on[e] = True
+                switches.append((when, seq, e, True))
+                seq += 1
+        else:
+            inside[e] = False
+            if on[e]:
+                on[e] = False
+                switches.append((when, seq, e, False))
+                seq += 1
+    if not switches:
+        return
+    # _bits for Normal/Inverted bits without pulses: OR per bit, then the mode
+    writes: list[tuple[float, int, int, bool]] = []
+    order = 0
+    mode = t.compensation.mode
+    for when, _, e, now_on in sorted(switches, key=_switch_key):
+        b = bit_of[e]
+        before = counts[b] > 0
+        counts[b] += 1 if now_on else -1
+        after = counts[b] > 0
+        if before == after:
+            continue
+        cam.active[b] = after
+        if after:
+            cam.pulse_origin[b] = when
+        writes.append((when, order, b, after if mode[b] == _M_NORMAL else not after))
+        order += 1
+    word = t.output
+    written = 0
+    for when, _, b, value in sorted(writes):
+        mask = 1 << b
+        if bool(word & mask) == value and not _zero_width(writes, b, when):
+            continue
+        word = (word | mask) if value else (word & ~mask)
+        written |= mask
+        step.edges.append(Edge(t.axis, t.target, b, float(when), bool(value)))
+    if written:
+        key = (t.axis, t.target)
+        step.changed[key] = step.changed.get(key, 0) | written
+    t.output = word
+
+
+def _switch_key(sw: tuple[float, int, int, bool]) -> tuple[float, bool, int]:
+    """Element switches in time order; at one instant the ons before the offs, so that two
+    elements of one bit handing over at the same position (a window split at the end of a
+    continuous range, [350, 360] and [0, 10]) keep the bit on without a zero-width gap."""
+    return sw[0], not sw[3], sw[1]
+
+
+def _max_delay(t: OutputCamTarget) -> float:
+    """Largest latch/unlatch delay of the bits a cam drives (how far its levels move per
+    unit of velocity change)."""
+    cam = t.cam
+    assert cam is not None
+    bits = cam.req.elements.bit
+    if not bits.size:
+        return 0.0
+    comp = t.compensation
+    return float(max(np.abs(comp.latch_delay[bits]).max(), np.abs(comp.unlatch_delay[bits]).max()))
+
+
+def _uses_enable(el: CamElements) -> bool:
+    return bool(
+        (
+            (el.latch == _L_ENABLE)
+            | (el.latch == _L_POSITION_AND_ENABLE)
+            | (el.unlatch >= _U_ENABLE)
+        ).any()
+    )
+
+
+def _refresh(
+    s: OutputCamSet, t: OutputCamTarget, cam: _Cam, v: float, words: tuple[int, int]
+) -> None:
+    """Recompute a cam's quiet interval at velocity v after an exact evaluation: the nearest
+    compensated levels below and above its cam position (replicated over the range when
+    continuous), when a duration unlatch is due, whether a pulse train runs, and the enable
+    words it has seen."""
+    if not (cam.locked and cam.in_range) or t.transition or cam.sync_inside:
+        cam.vref = math.nan
+        return
+    el = cam.req.elements
+    comp = t.compensation
+    off = comp.offset[el.bit]
+    if v >= 0:
+        lo = el.left + off - v * comp.latch_delay[el.bit]
+        hi = np.maximum(el.right + off - v * comp.unlatch_delay[el.bit], lo + s.min_width)
+    else:
+        hi = el.right + off - v * comp.latch_delay[el.bit]
+        lo = np.minimum(el.left + off - v * comp.unlatch_delay[el.bit], hi - s.min_width)
+    levels = np.concatenate((lo, hi))
+    c = cam.c
+    if not levels.size:
+        cam.gap_lo, cam.gap_hi = -math.inf, math.inf
+    elif cam.periodic:
+        period = cam.span
+        cam.gap_lo = c - float(((c - levels) % period).min())
+        cam.gap_hi = c + float(((levels - c) % period).min())
+    else:
+        below = levels[levels <= c]
+        above = levels[levels >= c]
+        cam.gap_lo = float(below.max()) if below.size else -math.inf
+        cam.gap_hi = float(above.min()) if above.size else math.inf
+    due = cam.off_time[cam.on]
+    cam.t_due = float(due.min()) if due.size else math.inf
+    cam.pulsing = bool((cam.active & (comp.mode >= _M_PULSED) & (comp.cycle_time > 0)).any())
+    cam.words = words
+    cam.vref = v
 
 
 def _displacement(x0: float, x1: float, unwind: float) -> float:
@@ -510,7 +745,8 @@ def _advance(
     velocity: np.ndarray | None,
     time_of: dict[tuple[int, int], TimeOf] | None,
     step: OutputCamStep,
-) -> None:
+) -> float:
+    """Exact evaluation of one target over the update; returns the velocity it used."""
     t.transition = False
     word = t.output
     written = 0
@@ -612,6 +848,7 @@ def _advance(
     if written:
         step.changed[(t.axis, t.target)] = written
     t.output = word
+    return v
 
 
 def _arm_crossing(req: ArmRequest, x0: float, d: float, dx: float, unwind: float) -> float | None:
@@ -822,7 +1059,7 @@ def _bits(
     writes: list[tuple[float, int, int, bool]] = []  # (time, order, bit, value)
     running = start_count.copy()
     order = 0
-    for when, _, e, on in sorted(switches):
+    for when, _, e, on in sorted(switches, key=_switch_key):
         b = int(el.bit[e])
         before = running[b] > 0
         running[b] += 1 if on else -1
@@ -887,7 +1124,7 @@ def _pulse_writes(
     start = ta if active_at_start else None
     origin = float(cam.pulse_origin[b]) if active_at_start else ta
     count = 0
-    for when, _, e, on in sorted(switches):
+    for when, _, e, on in sorted(switches, key=_switch_key):
         if int(el.bit[e]) != b:
             continue
         count += 1 if on else -1

@@ -31,6 +31,10 @@ def servo_step(
     cmd = command[idx]
     act = actual[idx]
     on = servo_on[idx]
-    new_act = np.where(on, act + alpha[idx] * (cmd - act), act)
+    stepped = act + alpha[idx] * (cmd - act)
+    if on.all():  # every loop closed (always so for virtual axes): the command stays
+        actual[idx] = stepped
+        return
+    new_act = np.where(on, stepped, act)
     actual[idx] = new_act
     command[idx] = np.where(on, cmd, new_act)

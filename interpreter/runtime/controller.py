@@ -234,9 +234,10 @@ class Controller:
 
     # ------------------------------------------------------------ watching and setting
     def reference(
-        self, text: str
+        self, text: str, as_ref: bool = False
     ) -> tuple[Callable[[], object], DataType, Callable[[object], None]]:
-        """Getter, type and setter for a tag reference such as `Axis1.ActualPosition`."""
+        """Getter, type and setter for a tag reference such as `Axis1.ActualPosition`
+        (as_ref: the getter gives the elementary storage location, a Ref or BitRef)."""
         try:
             expr = parse_expression(text.strip())
         except ValueError as exc:
@@ -263,7 +264,8 @@ class Controller:
         place_ops = list(rc.ops)
         from ..compiler.bytecode import Ins, Op
 
-        getter_ops = place_ops + [Ins(Op.LOAD, t) if isinstance(t, Elementary) else Ins(Op.VALUE)]
+        last = Op.REF if as_ref else Op.LOAD
+        getter_ops = place_ops + [Ins(last, t) if isinstance(t, Elementary) else Ins(Op.VALUE)]
         tr = Translator(rc.code, self.ns, "_w", getter_ops)
         for ins in getter_ops:
             tr.op(ins)

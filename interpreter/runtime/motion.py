@@ -13,10 +13,12 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 from functools import cache
+from typing import Protocol
 
 import numpy as np
 
 from ..motion import STATUS_BITS, AxisKind, CamProfile, EventKind, MotionEvent, MotionGroup
+from ..motion.rotary import travel_array
 from ..semantics.locate import walk
 from ..semantics.program import ProgramModel
 from ..semantics.types import ArrayType, StructType, is_axis
@@ -55,6 +57,7 @@ class Axis:
     layout: AxisLayout
     group: Group
     index: int
+    unwind_ok: bool = True  # False: RotaryAxis set with PositionUnwind not > 0 (ERR 11)
 
 
 @dataclass(eq=False, slots=True)
@@ -77,6 +80,15 @@ class Tracked:
     on_end: Callable[[Group, bool], None] | None = None  # completed?
 
 
+class UpdateHook(Protocol):
+    """Tags a kind of motion reads before every planner update and writes after it (an
+    output cam's Input/Output words and axis words), registered by its binding once."""
+
+    def before_update(self) -> None: ...
+
+    def after_update(self) -> None: ...
+
+
 @dataclass(eq=False, slots=True)
 class Group:
     """A motion group: the core MotionGroup plus the tags and processes attached to it."""
@@ -87,14 +99,18 @@ class Group:
     core: MotionGroup
     axes: list[Axis] = field(default_factory=list)
     tracked: dict[int, Tracked] = field(default_factory=dict)
+    links: list[int] = field(default_factory=list)  # handles of the tracked master links
     after: list[Callable[[], None]] = field(default_factory=list)
     prev_vel: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: np.ndarray = field(default_factory=lambda: np.zeros((1, 0)))  # ring of positions
     ring_at: int = 0  # row of the latest position in history
     filled: int = 0  # updates recorded (capped at the ring length - 1)
     actual_accel: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    vel_before: np.ndarray = field(default_factory=lambda: np.zeros(0))  # one update earlier
+    accel_known: bool = False  # two updates done: ActualAcceleration can be formed
     average_velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     stale: bool = True  # updated since its axis attributes were last written to the tags
+    hooks: list[UpdateHook] = field(default_factory=list)
 
     @property
     def next_time_ms(self) -> float:
@@ -176,6 +192,7 @@ class MotionRuntime:
         tau = 1.0 / (2.0 * math.pi * bw) if bw > 0 else 0.0
         idx = g.core.add_axis(name, kind, tau=tau, position=layout.get(value, "ActualPosition"))
         ax = Axis(name, value, layout, g, idx)
+        self.read_unwind(ax)
         g.axes.append(ax)
         self._axis_of[id(value)] = ax
         self.refresh(ax)
@@ -222,6 +239,21 @@ class MotionRuntime:
         cfg.max_accel_jerk = _limit(get(v, "MaximumAccelJerk"))
         cfg.max_decel_jerk = _limit(get(v, "MaximumDecelJerk"))
 
+    def read_unwind(self, ax: Axis) -> bool:
+        """Rotary or linear from the tag (RotaryAxis, PositionUnwind; decision 0115): the
+        core wraps a rotary axis at its unwind. A rotary axis whose unwind is not > 0 is not
+        configured (its motion instructions give error 11) and stays linear; False then."""
+        get, v = ax.layout.get, ax.value
+        rotary = bool(get(v, "RotaryAxis"))
+        unwind = float(get(v, "PositionUnwind")) if rotary else 0.0
+        ax.unwind_ok = not rotary or (math.isfinite(unwind) and unwind > 0.0)
+        u = unwind if ax.unwind_ok else 0.0
+        core = ax.group.core
+        if float(core.unwind[ax.index]) != u:
+            core.set_unwind(ax.index, u)
+            ax.group.stale = True
+        return ax.unwind_ok
+
     def demand(self, members: frozenset[str] | None) -> None:
         """Members (upper case; None: all) that are read from now on, e.g. by a --watch;
         they are written at once so that the reader sees the present state."""
@@ -246,6 +278,8 @@ class MotionRuntime:
 
     def track(self, g: Group, handle: int, tracked: Tracked) -> None:
         g.tracked[handle] = tracked
+        if tracked.link and handle not in g.links:
+            g.links.append(handle)
         self.own(tracked.control, g, handle)
 
     def token(self, g: Group) -> int:
@@ -279,22 +313,32 @@ class MotionRuntime:
         groups = self.groups
         if not groups:
             return
-        while True:
-            g = min(groups, key=lambda x: x.next_time_ms)
-            if g.next_time_ms > now_ms + 1e-6:
-                break
-            self._update(g)
+        due = now_ms + 1e-6
+        if len(groups) == 1:  # the usual case: no choosing between groups
+            g = groups[0]
+            while g.core.updates * g.cup_ms <= due:
+                self._update(g)
+        else:
+            while True:
+                g = min(groups, key=lambda x: x.next_time_ms)
+                if g.next_time_ms > due:
+                    break
+                self._update(g)
         for g in groups:  # the scan may read them: once per scan, not once per update
             if g.stale:
                 self._write_axes(g)
 
     def _update(self, g: Group) -> None:
+        for h in g.hooks:
+            h.before_update()
         events = g.core.update()
-        if g.core.shift.any():  # MRP / MAH: the AverageVelocity window moves with the axis
+        if g.core.shifted:  # MRP / MAH: the AverageVelocity window moves with the axis
             g.history += g.core.shift
         for ev in events:
             self._event(g, ev)
         self._active_bits(g)
+        for h in g.hooks:
+            h.after_update()
         self._record(g)
         after, g.after = g.after, []
         for fn in after:
@@ -317,6 +361,8 @@ class MotionRuntime:
         elif k is EventKind.COMPLETE or k is EventKind.ENDED:
             self.count(tr, -1)
             del g.tracked[ev.handle]
+            if ev.handle in g.links:
+                g.links.remove(ev.handle)
             if tr.on_end is not None:
                 tr.on_end(g, k is EventKind.COMPLETE)
             if own:
@@ -344,8 +390,11 @@ class MotionRuntime:
 
     def _active_bits(self, g: Group) -> None:
         """MDAC .AC follows whether a master-driven motion of the link is running."""
+        if not g.links:
+            return
         in_use = None
-        for h, tr in g.tracked.items():
+        for h in g.links:
+            tr = g.tracked[h]
             if tr.link and tr.control[AC] and self.owns(tr.control, g, h):
                 if in_use is None:
                     in_use = g.core.links_in_use()
@@ -363,8 +412,10 @@ class MotionRuntime:
         difference quotient of actual velocity) and, when read, AverageVelocity's window."""
         core = g.core
         av = core.actual_velocity
-        g.actual_accel = (av - g.prev_vel) / core.cup if core.updates > 1 else np.zeros_like(av)
-        g.prev_vel = av.copy()
+        # ActualAcceleration = (this update's velocity - the previous one) / cup, formed
+        # when written (_write_axes): most updates are never read
+        g.vel_before, g.prev_vel = g.prev_vel, av.copy()
+        g.accel_known = core.updates > 1
         if self._demand is None or "AVERAGEVELOCITY" in self._demand:
             g.average_velocity = self._average_velocity(g)
         g.stale = True
@@ -383,19 +434,25 @@ class MotionRuntime:
             return
         core = g.core
         n_axes = len(g.axes)
-        if len(g.actual_accel) != n_axes:
+        if g.accel_known and len(g.vel_before) == n_axes:
+            g.actual_accel = (g.prev_vel - g.vel_before) / core.cup
+        if len(g.actual_accel) != n_axes or not g.accel_known:
             g.actual_accel = np.zeros(n_axes)
         if len(g.average_velocity) != n_axes:
             g.average_velocity = np.zeros(n_axes)
         columns = {
-            "ACTUALPOSITION": lambda: core.actual_position,
-            "COMMANDPOSITION": lambda: core.command_position,
+            "ACTUALPOSITION": lambda: _on_circle(core.actual_position, core.unwind),
+            "COMMANDPOSITION": lambda: _on_circle(core.command_position, core.unwind),
             "ACTUALVELOCITY": lambda: core.actual_velocity,
             "COMMANDVELOCITY": lambda: core.command_velocity,
             "ACTUALACCELERATION": lambda: g.actual_accel,
             "COMMANDACCELERATION": lambda: core.command_acceleration,
             "AVERAGEVELOCITY": lambda: g.average_velocity,
-            "POSITIONERROR": lambda: core.command_position - core.actual_position,
+            # the short way round on a rotary axis (the command may have wrapped, not yet
+            # the actual)
+            "POSITIONERROR": lambda: travel_array(
+                core.command_position, core.actual_position, core.unwind
+            ),
         }
         reals = (
             np.vstack([columns[m]() for m in plan.real_names]).astype(np.float32).T.tolist()
@@ -448,6 +505,10 @@ class MotionRuntime:
             g.history = np.vstack((g.history, np.repeat(g.history[-1:], size - len(g.history), 0)))
             g.ring_at = len(g.history) - 1
         ring = g.history
+        if g.core.unwind.any():  # rotary axes: the ring counts travel through the wrap
+            last = ring[g.ring_at]
+            u = g.core.unwind
+            pos = np.where(u > 0.0, last + travel_array(pos, last, u), pos)
         g.ring_at = (g.ring_at + 1) % len(ring)
         ring[g.ring_at] = pos
         g.filled = min(g.filled + 1, len(ring) - 1)
@@ -541,6 +602,16 @@ def _collect_words(node: object, out: set[str]) -> None:
                 value = getattr(x, f.name)
                 if isinstance(value, str):
                     out.add(value.upper())
+
+
+def _on_circle(pos: np.ndarray, unwind: np.ndarray) -> np.ndarray:
+    """Positions as the REAL tag shows them: a rotary position just below the unwind
+    that float32 rounds up to the unwind itself is shown as 0, so the tag stays in
+    [0, unwind) too (decision 0115)."""
+    if not unwind.any():
+        return pos
+    up = (unwind > 0.0) & (pos.astype(np.float32) >= unwind.astype(np.float32))
+    return np.where(up, 0.0, pos) if up.any() else pos
 
 
 def _limit(x: float) -> float:

@@ -36,6 +36,7 @@ from .l5x import (
     L5XProject,
     ProgramDecl,
     TaskDecl,
+    rotary_members,
 )
 from .l5x import _remap as remap_spans
 from .l5x_data import DataReader, RawMember, _l5k_number
@@ -665,6 +666,8 @@ class _Reader:
                 num = _l5k_number(attr.text) if member else None
                 if member and num is not None:
                     members.append((member, sp, n.Literal(float(num), "REAL", attr.text, sp)))
+            if dtype.startswith("AXIS_"):
+                members += rotary_members({k: a.text.strip() for k, a in attrs.items()}, sp)
             return n.StructInit(members, sp)
         if dtype.startswith("ALARM_"):
             for key, attr in attrs.items():

@@ -116,7 +116,6 @@ _AXIS_PARAMS = {
     "MAXIMUMACCELERATIONJERK": "MaximumAccelJerk",
     "MAXIMUMDECELERATIONJERK": "MaximumDecelJerk",
     "CONVERSIONCONSTANT": "ConversionConstant",
-    "POSITIONUNWIND": "PositionUnwind",
     "POSITIONERRORTOLERANCE": "PositionErrorTolerance",
     "MAXIMUMPOSITIVETRAVEL": "MaximumPositiveTravel",
     "MAXIMUMNEGATIVETRAVEL": "MaximumNegativeTravel",
@@ -129,6 +128,51 @@ _AXIS_PARAMS = {
     "HOMESPEED": "HomeSpeed",
     "HOMERETURNSPEED": "HomeReturnSpeed",
 }
+
+
+def axis_rotary(attrs: dict[str, str]) -> tuple[bool, float] | None:
+    """Rotary or linear and the unwind in position units, from an axis's exported
+    parameters (upper-case names; decision 0115), or None when they say nothing.
+
+    A CIP drive axis says `TravelMode="Cyclic"` (else Unlimited or Limited: linear) and
+    gives its unwind in position units as PositionUnwindNumerator / Denominator. Older
+    axes say `RotaryAxis="Rotary"` (or Linear) with PositionUnwind in feedback counts,
+    ConversionConstant counts per position unit. A rotary axis whose unwind cannot be
+    read keeps 0, which the runtime reports as not configured (error 11)."""
+
+    def num(key: str) -> float | None:
+        try:
+            return float(attrs[key])
+        except (KeyError, ValueError):
+            return None
+
+    travel = attrs.get("TRAVELMODE")
+    if travel is not None:
+        if travel.strip().lower() != "cyclic":
+            return False, 0.0
+        top, bottom = num("POSITIONUNWINDNUMERATOR"), num("POSITIONUNWINDDENOMINATOR")
+        return True, (top / bottom if top is not None and bottom else 0.0)
+    mode = attrs.get("ROTARYAXIS")
+    if mode is None:
+        return None
+    if mode.strip().lower() != "rotary":
+        return False, 0.0
+    counts, per_unit = num("POSITIONUNWIND"), num("CONVERSIONCONSTANT")
+    return True, (counts / per_unit if counts is not None and per_unit else 0.0)
+
+
+def rotary_members(attrs: dict[str, str], sp: n.Span) -> list[tuple[str, n.Span, n.Init]]:
+    """RotaryAxis and PositionUnwind initialisers for an axis tag (see axis_rotary)."""
+    found = axis_rotary(attrs)
+    if found is None:
+        return []
+    rotary, unwind = found
+    return [
+        ("RotaryAxis", sp, n.Literal(int(rotary), "BOOL", str(int(rotary)), sp)),
+        ("PositionUnwind", sp, n.Literal(unwind, "REAL", repr(unwind), sp)),
+    ]
+
+
 # Axis parameters written as enumeration text (`HomeMode="Active"`): member and catalog enum.
 _AXIS_ENUM_PARAMS = {
     "HOMEMODE": "HomeMode",
@@ -421,6 +465,8 @@ class _Reader:
                 except ValueError:
                     continue
                 members.append((member, sp, n.Literal(num, "REAL", value, sp)))
+            if fmt == "Axis":
+                members += rotary_members({k.upper(): v for k, v in params.attrs.items()}, sp)
             if fmt == "CoordinateSystem":
                 axes = [
                     a

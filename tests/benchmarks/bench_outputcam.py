@@ -4,8 +4,9 @@ elements (2,048 elements), 60 s simulated at 1 ms coarse update.
 Each axis runs at constant speed over a continuous cam range of 360 units (one pass per
 1.8-3.6 s, depending on the axis); each target holds 32 position windows of 4 units spread
 over the range, one bit each, so outputs switch several times per update across the group.
-This times the numpy core alone (`OutputCamSet.update`), not the MAOC binding, which does
-not exist yet. Run: `python tests/benchmarks/bench_outputcam.py [SECONDS]`.
+`python tests/benchmarks/bench_outputcam.py [SECONDS]` times the numpy core alone
+(`OutputCamSet.update`); `... [SECONDS] --program` runs the same cams as an ST program through
+the whole `logixst run` command (MAJ on 8 virtual axes, 64 MAOCs, start-up included).
 Goal (issue 11): >= 20x real time; below 10x the issue is not done.
 """
 
@@ -76,8 +77,66 @@ def run(seconds: float) -> tuple[float, int]:
     return time.perf_counter() - t_start, edges
 
 
+def program() -> str:
+    """The benchmark as an ST program: the same windows, speeds and continuous cams."""
+    decl = ["VAR"]
+    body = ["IF k = 0 THEN"]
+    for axis in range(AXES):
+        speed = 100.0 + 100.0 * axis / AXES
+        decl.append(f"  A{axis} : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, "
+                    "MaximumAccel := 1000000.0, MaximumDecel := 1000000.0);")  # fmt: skip
+        decl.append(f"  jog{axis} : MOTION_INSTRUCTION;")
+        body.append(
+            f"  MAJ(A{axis}, jog{axis}, forward, {speed}, unitspersec, 1000000.0, unitspersec2, "
+            "1000000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, "
+            "programmed, 0.0, none);"
+        )
+        for target in range(TARGETS):
+            n = axis * TARGETS + target
+            windows = []
+            for k in range(ELEMENTS):
+                left = (k * RANGE / ELEMENTS + target * 1.3) % (RANGE - 5.0)
+                windows.append(f"(OutputBit := {k}, LatchType := 1, UnlatchType := 1, "
+                               f"Left := {left!r}, Right := {left + 4.0!r})")  # fmt: skip
+            decl.append(f"  cam{n} : OUTPUT_CAM[{ELEMENTS}] := [{', '.join(windows)}];")
+            decl.append(f"  arm{n} : MOTION_INSTRUCTION;")
+            body.append(
+                f"  MAOC(A{axis}, {target}, arm{n}, outs[{n}], ins[{n}], cam{n}, 0.0, {RANGE}, "
+                "comp, continuous, immediate, 0.0, 0.0, actual);"
+            )
+    decl += [f"  outs, ins : DINT[{AXES * TARGETS}];", "  comp : OUTPUT_COMPENSATION[32];",
+             "  k : DINT;", "END_VAR"]  # fmt: skip
+    return "\n".join(decl + body + ["END_IF;", "k := k + 1;", ""])
+
+
+def run_program(seconds: float) -> float:
+    import contextlib
+    import io
+    import tempfile
+
+    from interpreter.cli import main as cli
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "outputcams.st"
+        path.write_text(program())
+        t_start = time.perf_counter()
+        with contextlib.redirect_stdout(io.StringIO()):
+            code = cli(["run", str(path), "--duration", str(seconds), "--coarse-update", "1",
+                        "--watch", "outs[0]", "--json"])  # fmt: skip
+        wall = time.perf_counter() - t_start
+    assert code == 0
+    return wall
+
+
 def main() -> None:
     seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 60.0
+    if "--program" in sys.argv:
+        wall = run_program(seconds)
+        print(
+            f"logixst run, {AXES} axes x {TARGETS} MAOCs x {ELEMENTS} elements, {seconds:g} s "
+            f"at 1 ms: {wall:.2f} s wall, {seconds / wall:.1f}x real time"
+        )
+        return
     wall, edges = run(seconds)
     print(
         f"{AXES} axes x {TARGETS} targets x {ELEMENTS} elements, {seconds:g} s at 1 ms: "

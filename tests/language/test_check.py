@@ -150,8 +150,8 @@ def test_every_st_code_has_a_fixture() -> None:
 def test_recognised_but_not_executable(st) -> None:
     from interpreter.instructions.registry import lookup
 
-    assert lookup("MDOC", "st") is None  # output cams are a later issue: until then MDOC is U304
-    _, diags = _codes(st, "IF b THEN MDOC(ax, 0, mc, All); END_IF;\n")
+    assert lookup("PFL", "st") is None  # equipment phases are not simulated: PFL is U304
+    _, diags = _codes(st, "VAR f : DINT; b : BOOL; END_VAR\nIF b THEN PFL(f); END_IF;\n")
     assert [d["code"] for d in diags] == ["U304"]
 
 

@@ -565,3 +565,69 @@ def test_pending_refused_during_a_transition() -> None:
     assert (r.armed, r.error) == (False, error_code("Illegal Dynamic Change"))
     ax.run(s, DT)  # transition over: a pending MAOC is accepted again
     assert s.arm(0, 0, request(el, handle=4, sched=PEND)).armed
+
+
+@pytest.mark.parametrize("windows_only", [False, True])
+def test_quiet_intervals_match_the_exact_path_with_every_kind_of_element(windows_only) -> None:
+    # decision 0114: a cam may only be skipped while its travel stays inside its quiet
+    # interval. Every latch/unlatch type, durations, pulsed and inverted bits, delays,
+    # persistent and once ranges, enable words the "program" toggles, velocity changes and
+    # reversals: the skipping pass must give exactly the edges and events of evaluating
+    # every cam every update. windows_only: Position/Position windows without delays (the
+    # bisection path), narrow and wide, with offsets and inverted bits.
+    def build(batch: bool) -> OutputCamSet:
+        s = OutputCamSet(batch=batch)
+        r = np.random.default_rng(11)
+        for a in range(4):
+            for tg in range(4):
+                recs = []
+                for i in range(12):
+                    left = float(r.uniform(0, 300))
+                    recs.append(window(
+                        bit=i, left=left, right=left + float(r.uniform(0.05, 30.0)),
+                        latch=1 if windows_only else int(r.integers(0, 4)),
+                        unlatch=1 if windows_only else int(r.integers(0, 6)),
+                        Duration=float(r.uniform(0.001, 0.05)), EnableType=int(r.integers(0, 4)),
+                        EnableBit=int(r.integers(0, 32)),
+                    ))  # fmt: skip
+                el, _ = cam(*recs, end=360.0)
+                c, _ = (
+                    comp(b2={"Mode": 1}, b4={"Offset": 3.0})
+                    if windows_only
+                    else comp(
+                        b1={"Mode": 2, "CycleTime": 0.007, "DutyCycle": 40.0},
+                        b2={"Mode": 1},
+                        b3={"Mode": 3, "CycleTime": 0.011, "DutyCycle": 25.0},
+                        b4={"Offset": 3.0, "LatchDelay": 0.004, "UnlatchDelay": 0.002},
+                        b5={"LatchDelay": 0.01},
+                    )
+                )
+                mode = (ONCE, CONT, PERSIST, CONT)[tg]
+                arm(s, el, compensation=c, axis=a, target=tg, handle=a * 4 + tg + 1,
+                    mode=mode, end=360.0)  # fmt: skip
+        return s
+
+    fast, exact = build(True), build(False)
+    rng = np.random.default_rng(5)
+    x = np.zeros((2, 4))
+    speed = np.array([120.0, 333.0, -250.0, 60.0])
+    out: dict[bool, list] = {True: [], False: []}
+    for n in range(3000):
+        if n % 700 == 350:
+            speed = -speed  # reversals (persistent cams leave and come back)
+        if n % 97 == 0:
+            speed = speed * rng.uniform(0.8, 1.25, 4)  # velocity changes move the windows
+        x1 = x + speed * DT
+        words = int(rng.integers(0, 2**31)) if n % 41 == 0 else None
+        for s in (fast, exact):
+            if words is not None:  # the program writes the Input and Output words
+                for t in s.targets.values():
+                    t.input = words
+                    t.output ^= words & 0x0F0F0000
+            step = s.update(n * DT, DT, x, x1)
+            out[s.batch] += [(e.axis, e.target, e.bit, round(e.time, 12), e.value)
+                             for e in step.edges]  # fmt: skip
+            out[s.batch] += [(e.handle, e.kind, round(e.time, 12)) for e in step.events]
+        x = x1
+    assert len(out[True]) > 500
+    assert out[True] == out[False]
