@@ -7,7 +7,7 @@ that the compiler lowers, plus diagnostics. Never executes anything.
 from __future__ import annotations
 
 import difflib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -316,17 +316,31 @@ class Checker(LadderChecks):
 
     # ------------------------------------------------------------ entry
     def run(self) -> Analysis:
+        for _ in self.each_routine():
+            pass
+        return self.a
+
+    def each_routine(self) -> Iterator[n.Routine | None]:
+        """Check routine by routine, yielding each one once checked, then None after the tag
+        data: the language server keeps what each routine added (decision 0117)."""
         projects = bool(self.model.programs)
         for r in self.model.routines:
             self.routine(r, r.program_name if projects else None)
+            yield r
         for aoi in self.model.aois.values():
             self.aoi = aoi  # type: ignore[assignment]
             for r in aoi.routines.values():  # type: ignore[attr-defined]
                 self.routine(r, None)
+                yield r
             self.aoi = None
         if "l5x" in self.model.extra or "tag_data" in self.model.extra:
             self.check_tag_data()
-        return self.a
+        yield None
+
+    def carried(self) -> tuple[dict[str, int], set[str]]:
+        """What checking a routine leaves for the routines after it: the first line of each
+        motion control tag (W203) and the modules whose U306 was given."""
+        return self.motion_uses, self._modules_reported
 
     def routine(self, r: n.Routine, scope: str | None) -> None:
         self.path = r.path

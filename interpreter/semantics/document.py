@@ -7,7 +7,9 @@ so an editor sees exactly the diagnostics `logixst check` prints for the same te
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from itertools import islice
 
 from ..diagnostics import Diagnostic
 from ..syntax import nodes as n
@@ -15,7 +17,7 @@ from ..syntax.l5k import read_l5k
 from ..syntax.l5x import L5XProject, ParseMemo, read_l5x
 from ..syntax.rll_parser import parse_rll
 from ..syntax.st_parser import parse_st
-from .checker import Analysis, check_program
+from .checker import Analysis, Checker, check_program
 from .program import ProgramModel, build_program
 from .project import build_project, controller_scope, declare_aliases
 from .types import TypeTable
@@ -95,12 +97,69 @@ def read_export(
 
 def analyse_project(path: str, data: bytes, memo: ParseMemo | None = None) -> Loaded:
     """One .L5X/.L5K export is one project (SPEC 9.8); positions are positions in that file."""
+    return analyse_export(path, data, memo).loaded
+
+
+@dataclass(slots=True)
+class RoutineCheck:
+    """What verifying one routine of a project gave, and left for the routines after it."""
+
+    raw: list[Diagnostic]  # as the verifier gave them (Analysis.diags)
+    diags: list[Diagnostic]  # annotated with program / routine / rung
+    motion: list[tuple[str, int]]  # motion control tags first used here, with that line (W203)
+    modules: set[str]  # modules whose U306 was given here
+
+
+@dataclass(slots=True)
+class ProjectAnalysis:
+    """An export's analysis kept in the parts that an edit inside one routine's text replaces
+    (the language server, decision 0117): the reading's diagnostics, the model's, and the
+    verifier's routine by routine (model.routines in order, then the add-on instructions'
+    routines, then the tag data)."""
+
+    loaded: Loaded
+    read_diags: list[Diagnostic]
+    model_diags: list[Diagnostic]
+    checks: list[RoutineCheck] = field(default_factory=list)
+
+    def diagnostics(self) -> list[Diagnostic]:
+        """All of them in `check`'s order: the parts in the order one full analysis made them,
+        then a stable sort by place and code."""
+        diags = self.read_diags + self.model_diags
+        for c in self.checks:
+            diags.extend(c.diags)
+        diags.sort(key=lambda d: d.sort_key())
+        return diags
+
+
+def analyse_export(path: str, data: bytes, memo: ParseMemo | None = None) -> ProjectAnalysis:
+    """analyse_project, with the verification kept routine by routine."""
     project, diags = read_export(path, data, memo)
     if project is None:
         stem = path.rsplit("/", 1)[-1].rsplit(".", 1)[0]
-        return Loaded(ProgramModel(stem, [], TypeTable()), Analysis(), diags)
+        loaded = Loaded(ProgramModel(stem, [], TypeTable()), Analysis(), diags)
+        return ProjectAnalysis(loaded, diags, [])
     model, mdiags = build_project(project)
-    analysis = check_program(model)
-    diags = diags + mdiags + [project.annotate(d) for d in analysis.diags]
-    diags.sort(key=lambda d: d.sort_key())
-    return Loaded(model, analysis, diags, project)
+    checker = Checker(model)
+    result = ProjectAnalysis(Loaded(model, checker.a, [], project), diags, mdiags)
+    result.checks = record_checks(checker, checker.each_routine(), project.annotate)
+    result.loaded.diagnostics = result.diagnostics()
+    return result
+
+
+def record_checks(
+    checker: Checker, steps: Iterable[object], annotate: Callable[[Diagnostic], Diagnostic]
+) -> list[RoutineCheck]:
+    """Run `steps` (routines being checked), keeping what each one added."""
+    motion, modules = checker.carried()
+    diags = checker.a.diags
+    out: list[RoutineCheck] = []
+    d0, m0, seen = len(diags), len(motion), set(modules)
+    for _ in steps:
+        added = list(islice(motion.items(), m0, None)) if len(motion) > m0 else []
+        new_modules = modules - seen if len(modules) > len(seen) else set()
+        raw = diags[d0:]
+        out.append(RoutineCheck(raw, [annotate(d) for d in raw], added, new_modules))
+        d0, m0 = len(diags), len(motion)
+        seen |= new_modules
+    return out

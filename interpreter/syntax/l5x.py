@@ -194,6 +194,11 @@ class ParseMemo:
 
     previous: dict[tuple[object, ...], object] = field(default_factory=dict)
     current: dict[tuple[object, ...], object] = field(default_factory=dict)
+    # The last read itself, so that one program routine can be read again alone after an
+    # edit inside its text (read_routine_again, decision 0117): its reader and the elements
+    # its program routines came from. Only the routines' elements are kept, not the tree.
+    reader: _Reader | None = None
+    sources: list[RoutineSource] = field(default_factory=list)
 
     def get(self, key: tuple[object, ...], parse: Callable[[], _T]) -> _T:
         hit = self.previous.get(key)
@@ -203,6 +208,35 @@ class ParseMemo:
 
     def rotate(self) -> None:
         self.previous, self.current = self.current, {}
+
+
+@dataclass(slots=True)
+class RoutineSource:
+    """Where the last read found one program routine."""
+
+    program: int  # index in L5XProject.programs
+    index: int  # index in that program's routines
+    element: XElem  # its <Routine> (or <EncodedData>) element
+    owner: str  # "program P", as diagnostics name it
+    diags: tuple[int, int]  # its slice of the read's diagnostics (reading and parsing it)
+
+
+def read_routine_again(
+    memo: ParseMemo, source: RoutineSource
+) -> tuple[n.Routine | None, list[Diagnostic]]:
+    """Read one program routine of the last read again, after its elements' text changed
+    (the caller has checked that nothing else moved); diagnostics come annotated."""
+    reader = memo.reader
+    assert reader is not None
+    start = len(reader.diags)
+    routine = reader.routine(source.element, source.owner)
+    if routine is not None:
+        routine.program_name = reader.project.programs[source.program].name
+    diags = [reader.project.annotate(d) for d in reader.diags[start:]]
+    del reader.diags[start:]
+    memo.previous.update(memo.current)  # keep the pieces of the last full read as well
+    memo.current.clear()
+    return routine, diags
 
 
 def read_l5x(
@@ -235,9 +269,11 @@ def read_l5x(
             diag("S007", "the export has no <Controller> element", path, pos.elem_span(root))
         ]
     reader = _Reader(path, pos, memo or ParseMemo())
+    reader.memo.sources = []
     project = reader.read(root, ctl)
     if memo is not None:
         memo.rotate()
+        memo.reader = reader
     return project, [project.annotate(d) for d in reader.diags]
 
 
@@ -548,9 +584,19 @@ class _Reader:
             prog.aliases.extend(aliases)
         for sec in e.all("Routines"):
             for re_ in sec.children:
+                start = len(self.diags)
                 r = self.routine(re_, f"program {name}")
                 if r is not None:
                     r.program_name = name
+                    self.memo.sources.append(
+                        RoutineSource(
+                            len(self.project.programs),
+                            len(prog.routines),
+                            re_,
+                            f"program {name}",
+                            (start, len(self.diags)),
+                        )
+                    )
                     prog.routines.append(r)
         self.project.programs.append(prog)
 

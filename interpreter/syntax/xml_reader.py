@@ -161,6 +161,10 @@ def parse_xml(data: bytes) -> tuple[XElem, Positions]:
             line,
             col,
         ) from None
+    finally:
+        # The handlers are closures over `p` and `p` holds them: a cycle that would keep the
+        # whole element tree alive until the cyclic collector runs. Unbinding `p` breaks it.
+        p = None  # type: ignore[assignment]
     if not root:
         raise XmlRejected("no XML element found", 1, 1)
     return root[0], pos

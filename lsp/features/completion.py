@@ -203,7 +203,16 @@ def _fits(t: DataType, op: Operand) -> bool:
 
 
 def tag_items(tags: list[Tag], sort: str = "4") -> list[Item]:
-    return [Item(t.name, Kind.VARIABLE, str(t.type), sort=sort) for t in tags]
+    shown: dict[
+        DataType, str
+    ] = {}  # a type's text, once per type (an export has thousands of tags)
+    items = []
+    for t in tags:
+        detail = shown.get(t.type)
+        if detail is None:
+            detail = shown[t.type] = str(t.type)
+        items.append(Item(t.name, Kind.VARIABLE, detail, sort=sort))
+    return items
 
 
 def type_items(model: ProgramModel) -> list[Item]:

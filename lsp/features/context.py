@@ -11,6 +11,8 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
+from ..lines import line_start
+
 _WORD = re.compile(r"[A-Za-z0-9_%:]*\Z")
 _IDENT_BEFORE = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)\s*\Z")
 _VAR_OPEN = re.compile(r"\bVAR(?:_INPUT|_OUTPUT|_IN_OUT|_GLOBAL|_EXTERNAL|_TEMP)?\b", re.I)
@@ -56,12 +58,9 @@ def mask(text: str) -> str:
 
 def offset_of(text: str, line: int, character: int) -> int:
     """0-based (line, character) to an index into `text`, clamped to the text."""
-    pos = 0
-    for _ in range(line):
-        nl = text.find("\n", pos)
-        if nl < 0:
-            return len(text)
-        pos = nl + 1
+    pos = line_start(text, line)
+    if pos >= len(text):
+        return len(text)
     end = text.find("\n", pos)
     end = len(text) if end < 0 else end
     return min(pos + max(character, 0), end)

@@ -226,3 +226,39 @@ async def test_code_actions_take_the_suggestion_or_declare_the_tag(
     [edit] = declare.edit.changes[uri]
     assert edit.new_text == "ctl : MOTION_INSTRUCTION; "
     assert (edit.range.start.line, edit.range.start.character) == (0, text.index("END_VAR"))
+
+
+async def test_l5x_edit_inside_a_rung_equals_check_json(  # type: ignore[no-untyped-def]
+    client: LanguageClient, tmp_path: Path, capsys
+) -> None:
+    # An edit inside one rung's text is patched into the last analysis (decision 0117); what
+    # is published must still be what `check` prints for the edited file.
+    fixture = Path(__file__).parent / "fixtures" / "two_programs.L5X"
+    text = fixture.read_text()
+    path = tmp_path / "two_programs.L5X"
+    uri = await open_doc(client, path, text)
+    assert [d.code for d in client.diagnostics[uri]] == ["U306", "W203"]
+    at = text.index("XIC(Start)OTE(Run);") + len("XIC(Sta")
+    line = text.count("\n", 0, at)
+    col = at - text.rfind("\n", 0, at) - 1
+    client.diagnostics.pop(uri)
+    client.text_document_did_change(
+        t.DidChangeTextDocumentParams(
+            t.VersionedTextDocumentIdentifier(version=2, uri=uri),
+            [
+                t.TextDocumentContentChangePartial(
+                    t.Range(t.Position(line, col), t.Position(line, col + 1)), "k"
+                )
+            ],
+        )
+    )
+    got = await wait_diagnostics(client, uri)
+    edited = text[:at] + "k" + text[at + 1 :]
+    path.write_text(edited)
+    capsys.readouterr()
+    main(["check", str(path), "--format", "json"])
+    want = json.loads(capsys.readouterr().out)
+    assert [
+        (d.code, d.range.start.line + 1, d.range.start.character + 1, d.message) for d in got
+    ] == [(w["code"], w["line"], w["column"], w["message"]) for w in want]
+    assert [w["code"] for w in want] == ["E101", "U306", "W203"]
