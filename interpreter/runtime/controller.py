@@ -9,8 +9,8 @@ from typing import Any
 from ..compiler.ladder_compiler import compile_ladder
 from ..compiler.st_compiler import RoutineCompiler, compile_routine
 from ..semantics.aoi import Aoi
-from ..semantics.checker import Checker
-from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
+from ..semantics.checker import ST_SYSTEM_FLAGS, SYSTEM_FLAGS, Checker
+from ..semantics.types import BOOL, ArrayType, DataType, Elementary, Kind, StructType
 from ..syntax import nodes as n
 from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
@@ -237,6 +237,9 @@ class Controller:
         self, text: str
     ) -> tuple[Callable[[], object], DataType, Callable[[object], None]]:
         """Getter, type and setter for a tag reference such as `Axis1.ActualPosition`."""
+        flag = self._system_flag(text)
+        if flag is not None:
+            return flag
         try:
             expr = parse_expression(text.strip())
         except ValueError as exc:
@@ -308,6 +311,35 @@ class Controller:
             self.ns[sname](self.T, self.ctx)
 
         return (lambda: fn(self.T, self.ctx)), t, setter
+
+    def _system_flag(
+        self, text: str
+    ) -> tuple[Callable[[], object], DataType, Callable[[object], None]] | None:
+        """`S:FS`, `S:N` ... as a watch (SPEC 9.17, docs/decisions/0131-cli-system-flags.md).
+
+        A watch reads the flag as it stands at the end of the scan, as any watched tag. S:FS
+        is readable for every program; the arithmetic flags only where ladder sets them.
+        The controller owns every flag: `--set` of one is refused, never ignored.
+        """
+        key = text.strip().upper()
+        if key not in SYSTEM_FLAGS:
+            return None
+        name = SYSTEM_FLAGS[key]
+        if key not in ST_SYSTEM_FLAGS and not any(
+            r.language == "rll" for r in self.model.all_routines()
+        ):
+            raise WatchError(
+                f"'{text}' is available in ladder only, and this program has no ladder routine"
+            )
+        ctx = self.ctx
+
+        def getter() -> object:
+            return ctx.first_scan if name == "FS" else ctx.status.get(name, 0)
+
+        def setter(value: object) -> None:
+            raise WatchError(f"'{text}' is a status flag the controller sets: it cannot be set")
+
+        return getter, BOOL, setter
 
 
 def _qualify(e: n.Expr) -> n.Expr:
