@@ -14,6 +14,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 from interpreter.diagnostics import Diagnostic
+from interpreter.limits import MAX_PROJECT_BYTES, MAX_SOURCE_BYTES, LimitError, read_limited
 from interpreter.semantics.document import (
     PROGRAM_SUFFIXES,
     PROJECT_SUFFIXES,
@@ -170,9 +171,9 @@ class Workspace:
         for name in sorted(paths):
             text = open_text.get(name)
             if text is None:
-                try:
-                    text = Path(name).read_text(encoding="utf-8", errors="replace")
-                except OSError:
+                try:  # bounded, regular files only, as the CLI reads them (docs/limits.md)
+                    text = read_limited(Path(name), MAX_SOURCE_BYTES).decode("utf-8", "replace")
+                except (OSError, LimitError):
                     continue
             sources.append(Source(name, text))
         return sources
@@ -181,8 +182,8 @@ class Workspace:
         if not self.tags_path:
             return None
         try:
-            data = Path(self.tags_path).read_bytes()
-        except OSError:
+            data = read_limited(Path(self.tags_path), MAX_PROJECT_BYTES)
+        except (OSError, LimitError):
             return None
         project, _ = read_export(self.tags_path, data)
         return None if project is None else (project, self.tags_path)
