@@ -34,6 +34,12 @@ _RECURSION_LIMIT = 60_000  # AST walks take about three frames per level
 _STACK_BYTES = 512 * 1024 * 1024  # reserved address space; only the pages used are touched
 
 
+def _json(obj: object, indent: int | None = None) -> str:
+    """Strict JSON: tag values arrive with non-finite REALs as text (to_json_value), so a
+    NaN or infinity left anywhere else is a bug that must fail loudly, not print `NaN`."""
+    return json.dumps(obj, indent=indent, allow_nan=False)
+
+
 class UsageError(Exception):
     pass
 
@@ -270,7 +276,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         _print_diags(loaded.diagnostics)
         if args.json:
             print(
-                json.dumps(
+                _json(
                     {
                         "time": 0.0,
                         "scans": 0,
@@ -322,7 +328,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     sim_time = ctl.scans * args.scan_period / 1000.0
     if args.json:
         print(
-            json.dumps(
+            _json(
                 {
                     "time": sim_time,
                     "scans": ctl.scans,
@@ -334,7 +340,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             )
         )
     else:
-        _print_table(tags)
+        _print_table(tags, {w: t for w, _, t in watches})
         for f in faults:
             print(f.text(), file=sys.stderr)
     return EXIT_OK if ok else EXIT_FAULT
@@ -434,7 +440,7 @@ def _csv_value(v: object, t: object) -> object:
     if isinstance(j, bool):
         return 1 if j else 0
     if isinstance(j, dict | list):
-        return json.dumps(j)
+        return _json(j)
     return j
 
 
@@ -492,13 +498,15 @@ def _coordinate_paths(ctl: Controller, watched: list[str]) -> list[tuple[str, li
     return out
 
 
-def _print_table(tags: dict[str, object]) -> None:
+def _print_table(tags: dict[str, object], types: dict[str, DataType]) -> None:
     if not tags:
         print("(no elementary tags to show; use --watch)")
         return
     width = max(len(k) for k in tags)
     for k, v in tags.items():
-        shown = json.dumps(v) if not isinstance(v, str) else repr(v)
+        t = types.get(k)
+        real = isinstance(t, Elementary) and t.is_real  # Infinity/NaN: a number, not a STRING
+        shown = _json(v) if not isinstance(v, str) else v if real else repr(v)
         print(f"{k.ljust(width)}  {shown}")
 
 
@@ -563,7 +571,7 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
     if fmt == "json":
-        print(json.dumps([d.to_json() for d in diags], indent=2))
+        print(_json([d.to_json() for d in diags], indent=2))
     elif fmt == "github":
         for d in diags:
             kind = (
@@ -578,7 +586,7 @@ def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
                 f"endColumn={d.span.end_col},title={d.code}::{d.message}"
             )
     elif fmt == "sarif":
-        print(json.dumps(_sarif(diags), indent=2))
+        print(_json(_sarif(diags), indent=2))
     else:
         for d in diags:
             print(d.text())

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -379,13 +380,27 @@ def _literal_type(value: object, target: Elementary) -> Elementary:
     return LREAL if isinstance(value, float) else DINT
 
 
+NON_FINITE = {math.inf: "Infinity", -math.inf: "-Infinity"}
+
+
+def json_real(x: float) -> float | str:
+    """A REAL for JSON: itself when finite, else the text "Infinity", "-Infinity" or "NaN".
+
+    Strict JSON has no token for them (docs/decisions/0132-non-finite-reals-in-json.md);
+    the texts are those JavaScript and Python print, so `float(text)` reads them back.
+    """
+    if math.isfinite(x):
+        return x
+    return "NaN" if x != x else NON_FINITE[x]
+
+
 def to_json_value(value: object, t: DataType | None) -> object:
     """JSON form of a tag value: BOOL true/false, integers, floats, STRING text, objects."""
     if isinstance(t, Elementary):
         if t.kind is Kind.BOOL:
             return bool(value)
         if t.kind is Kind.REAL:
-            return float(value)  # type: ignore[arg-type]
+            return json_real(float(value))  # type: ignore[arg-type]
         return int(value)  # type: ignore[call-overload]
     if isinstance(t, StructType):
         assert isinstance(value, list)
