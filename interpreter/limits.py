@@ -30,10 +30,13 @@ MAX_TAG_ELEMENTS = 4_000_000  # elementary values of all tags together
 MAX_LITERAL_DIGITS = 1_000  # characters of one numeric literal (digits and separators)
 MAX_STRING_CHARS = 82  # a STRING's capacity: a longer literal does not fit
 
-# ---- nesting and size of code
-MAX_NESTING = 100  # nested IF/CASE/FOR/WHILE/REPEAT blocks, parentheses and branch levels
-MAX_EXPRESSION_TERMS = 10_000  # operators in one ST expression
+# ---- nesting and size of code (the generated Python allows about 100 nested blocks and
+# 20 nested loops; the recursive passes handle some 10,000 levels of expression)
+MAX_BLOCK_NESTING = 64  # IF/CASE/FOR/WHILE/REPEAT blocks inside one another
+MAX_LOOP_NESTING = 16  # FOR/WHILE/REPEAT loops inside one another
+MAX_EXPRESSION_DEPTH = 5_000  # operators, calls and subscripts nested in one expression
 MAX_RUNG_ELEMENTS = 10_000  # instructions and branches in one rung
+MAX_BRANCH_NESTING = 1_000  # ladder branches inside one another
 
 
 class LimitError(ValueError):
