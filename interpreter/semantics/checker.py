@@ -23,6 +23,7 @@ from . import time_types
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
 from .limits_check import routine_limits, storage_limit
+from .motion_config import config_problem
 from .program import ProgramModel, Tag, const_number, module_tag_note, scoped_programs
 from .suggest import NameIndex
 from .types import (
@@ -428,6 +429,10 @@ class Checker(LadderChecks):
                         self.err("E118", "a coordinate system has 2 or 3 axes", value.span)
                     continue
                 self.check_init(value, mt)
+                number = const_number(value)
+                problem = None if number is None else config_problem(t.name, mname, number)
+                if problem is not None:
+                    self.err("E118", problem, _init_span(value))
             return
         # a single value
         if isinstance(t, ArrayType):
