@@ -13,7 +13,7 @@ from pathlib import Path
 
 # ---- input files
 MAX_PROJECT_BYTES = 64 * 1024 * 1024  # one .L5X / .L5K export
-MAX_SOURCE_BYTES = 4 * 1024 * 1024  # one .st / .rll file (about 100,000 lines)
+MAX_SOURCE_BYTES = 1024 * 1024  # one .st / .rll file (about 80,000 statements)
 
 # ---- run length and timing (CLI)
 MAX_SCANS = 10_000_000  # normal scans in one run (2.8 h of simulated time at 1 ms)
@@ -37,6 +37,7 @@ MAX_LOOP_NESTING = 16  # FOR/WHILE/REPEAT loops inside one another
 MAX_EXPRESSION_DEPTH = 5_000  # operators, calls and subscripts nested in one expression
 MAX_RUNG_ELEMENTS = 10_000  # instructions and branches in one rung
 MAX_BRANCH_NESTING = 1_000  # ladder branches inside one another
+MAX_ROUTINE_ELEMENTS = 50_000  # statements (ST) or instructions and branches (ladder) per routine
 
 
 class LimitError(ValueError):

@@ -8,13 +8,15 @@ the place that exceeds it, from `check` and `run` alike, and is not walked any f
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
+from typing import Any
 
 from ..limits import (
     MAX_BLOCK_NESTING,
     MAX_BRANCH_NESTING,
     MAX_EXPRESSION_DEPTH,
     MAX_LOOP_NESTING,
+    MAX_ROUTINE_ELEMENTS,
     MAX_RUNG_ELEMENTS,
     MAX_TAG_ELEMENTS,
 )
@@ -43,16 +45,70 @@ def routine_limits(r: n.Routine) -> list[tuple[str, n.Span]]:
     """The limits this routine exceeds: (message, place), at most one per top-level statement
     or rung (the first place found beyond a limit)."""
     if r.language == "rll":
-        return [p for rung in r.rungs if (p := _rung(rung)) is not None]
-    return list(_statements(r.body))
+        problems = [p for rung in r.rungs if (p := _rung(rung)) is not None]
+    else:
+        problems = list(_statements(r.body))
+    return problems or _routine_size(r)
+
+
+def _routine_size(r: n.Routine) -> list[tuple[str, n.Span]]:
+    """Statements or ladder elements of the whole routine (compiled code grows with them)."""
+    count = 0
+    stack: list[object] = [*reversed(r.rungs), *reversed(r.body)]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, n.Rung):
+            stack.extend(reversed(node.elements))
+            continue
+        if isinstance(node, n.Branch):
+            stack.extend(e for leg in reversed(node.legs) for e in reversed(leg))
+        elif isinstance(node, n.If):
+            stack.extend(
+                reversed([*(s for _, b in node.branches for s in b), *(node.else_body or [])])
+            )
+        elif isinstance(node, n.Case):
+            stack.extend(
+                reversed([*(s for a in node.arms for s in a.body), *(node.else_body or [])])
+            )
+        elif isinstance(node, n.For | n.While | n.Repeat):
+            stack.extend(reversed(node.body))
+        count += 1
+        if count > MAX_ROUTINE_ELEMENTS:
+            what = "instructions and branches" if r.language == "rll" else "statements"
+            return [
+                (
+                    f"routine of more than {MAX_ROUTINE_ELEMENTS:,} {what}: the limit is "
+                    f"{MAX_ROUTINE_ELEMENTS:,} (split it into several routines)",
+                    node.span,  # type: ignore[attr-defined]
+                )
+            ]
+    return []
 
 
 _NODE_FIELDS: dict[type, tuple[str, ...]] = {}
 
+# the common nodes' children without reflection: this pass sees every node of every routine
+_FAST: dict[type, Callable[[Any], list[object]]] = {
+    n.Assign: lambda x: [x.target, x.value],
+    n.Binary: lambda x: [x.left, x.right],
+    n.Unary: lambda x: [x.operand],
+    n.Name: lambda x: [],
+    n.Literal: lambda x: [],
+    n.EnumText: lambda x: [],
+    n.Placeholder: lambda x: [],
+    n.Member: lambda x: [x.base],
+    n.Index: lambda x: [x.base, *x.indices],
+    n.Call: lambda x: [a.value for a in x.args],
+    n.CallStmt: lambda x: [x.call],
+}
 
-def _children(node: object) -> Iterator[object]:
+
+def _children(node: object) -> Iterable[object]:
     """The AST nodes directly inside `node` (in fields, lists and (expr, body) pairs)."""
     cls = type(node)
+    fast = _FAST.get(cls)
+    if fast is not None:
+        return fast(node)
     fields = _NODE_FIELDS.get(cls)
     if fields is None:
         fields = _NODE_FIELDS[cls] = tuple(
@@ -60,8 +116,7 @@ def _children(node: object) -> Iterator[object]:
             for f in cls.__slots__  # type: ignore[attr-defined]
             if f not in ("span", "name_span", "text", "ident", "op")
         )
-    for name in fields:
-        yield from _flatten(getattr(node, name))
+    return [c for name in fields for c in _flatten(getattr(node, name))]
 
 
 def _flatten(value: object) -> Iterator[object]:

@@ -59,13 +59,13 @@ def test_socket(tmp_path: Path) -> None:
 
 
 def test_source_file_size_limit(tmp_path: Path) -> None:
-    # 5 MB of comment: one byte over 4 MB would do; the message states the limit
+    # 5 MB of comment, beyond the 1 MB limit of a .st file; the message states the limit
     big = tmp_path / "big.st"
     big.write_bytes(b"// padding\n" * (5 * 1024 * 1024 // 11))
     assert big.stat().st_size > MAX_SOURCE_BYTES
     r = logixst("run", big, timeout=20)
     assert r.code == 2
-    r.one_line_error(f"{big}: file is too large", "the limit is 4 MB")
+    r.one_line_error(f"{big}: file is too large", "the limit is 1 MB")
 
 
 def test_project_size_limit_states_the_limit(tmp_path: Path) -> None:
