@@ -27,8 +27,6 @@ from interpreter.semantics.document import (
 )
 from interpreter.syntax.l5x import L5XProject, ParseMemo
 
-MAX_DOCUMENT_CHARS = 64 * 1024 * 1024  # as the CLI's file size limit
-
 
 def uri_to_path(uri: str) -> str:
     parsed = urlparse(uri)
@@ -115,7 +113,8 @@ class Workspace:
         doc = self.documents.get(uri)
         if doc is None or doc.language is None:
             return None
-        if len(doc.text) > MAX_DOCUMENT_CHARS or looks_binary(doc.text[:8192].encode()):
+        limit = MAX_PROJECT_BYTES if doc.language == "l5x" else MAX_SOURCE_BYTES  # as the CLI
+        if len(doc.text) > limit or looks_binary(doc.text[:8192].encode()):
             return None  # `check` refuses such a file as input: nothing to verify
         sources = self._program_sources(doc) if doc.language != "l5x" else []
         key: tuple[object, ...] = (doc.text, self.tags_path, tuple(sources))

@@ -75,3 +75,13 @@ def test_project_size_limit_states_the_limit(tmp_path: Path) -> None:
     r = logixst("check", big, timeout=20)
     assert r.code == 2
     r.one_line_error(f"{big}: file is too large", "the limit is 64 MB")
+
+
+def test_fifty_megabyte_source_is_refused_from_its_size(tmp_path: Path) -> None:
+    # a sparse 50 MB .st file: refused from stat, nothing is read (it used to never finish)
+    big = tmp_path / "fifty.st"
+    with big.open("wb") as fh:
+        fh.truncate(50 * 1024 * 1024)
+    r = logixst("check", big, timeout=20)
+    assert r.code == 2
+    r.one_line_error(f"{big}: file is too large (52,428,800 bytes; the limit is 1 MB)")
