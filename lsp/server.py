@@ -41,6 +41,9 @@ class _Ignored:
 
     jsonrpc = "ignored"
 
+    def __repr__(self) -> str:  # pygls logs it as an unknown message
+        return "(a request already answered with an error)"
+
 
 class LogixProtocol(LanguageServerProtocol):
     """Answers a request whose parameters do not deserialise (a negative position, a string
