@@ -23,7 +23,7 @@ from .limits import (
 from .plot import PlotData, Series, require_matplotlib, write_plot
 from .runtime.loader import SUFFIXES, InputError, is_project, load
 from .semantics.types import DataType, Elementary, StructType
-from .syntax.literals import parse_number, parse_string
+from .syntax.literals import LiteralError, parse_number, parse_string
 from .vm.context import DEFAULT_WATCHDOG
 
 if TYPE_CHECKING:
@@ -238,6 +238,8 @@ def parse_set_value(text: str, target: DataType | None = None) -> object:
     digits = t[1:] if neg or t.startswith("+") else t
     try:
         value, _ = parse_number(digits)
+    except LiteralError as exc:  # a number no Logix type holds, as the checker's E133 says
+        raise UsageError(f"--set: {exc}") from None
     except ValueError:
         raise UsageError(f"--set: '{text}' is not an ST literal") from None
     if (

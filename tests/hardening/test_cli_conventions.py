@@ -182,3 +182,23 @@ def test_sample_headers_work_from_a_fresh_clone() -> None:
         text = sample.read_text(encoding="utf-8", errors="replace")
         assert "pip install logixst[" not in text, sample.name
         assert "--plot docs/" not in text, sample.name
+
+
+@pytest.mark.parametrize(
+    ("value", "message"),
+    [
+        # 88 bits: no Logix integer holds it, as E133 says of the same literal in a program
+        (
+            "16#FFFFFFFFFFFFFFFFFFFFFF",
+            "--set: integer literal 16#FFFFFFFFFFFFFFFFFFFFFF does not fit in 64 bits (LINT/ULINT)",
+        ),
+        ("9" * 5000, "--set: numeric literal of 5,000 characters: the limit is 1,000"),
+        # 1e999 is +infinity: outside a DINT (-2**31 .. 2**31 - 1)
+        ("1e999", "--set 'n' is DINT: inf is outside -2147483648..2147483647"),
+    ],
+    ids=["88-bit", "5000-digits", "infinite"],
+)
+def test_set_of_out_of_range_literals(prog: Path, value: str, message: str) -> None:
+    r = logixst("run", prog, "--set", f"n={value}", timeout=20)
+    assert r.code == 2
+    r.one_line_error(message)
