@@ -25,6 +25,7 @@ DECLS = (
     "VAR\n"
     + "".join(f"  {n} : {t};\n" for n, t in {**INT_TYPES, **UINT_TYPES}.items())
     + "  r : REAL;\n  lr : LREAL;\n  b : BOOL;\n  ad : DINT[4];\n  ar : REAL[3];\n  k : DINT;\n"
+    + "  s1, s2 : STRING;\n  ft : FBD_TIMER;\n  t : TIMER;\n  c : COUNTER;\n"
     + "END_VAR\n"
 )
 
@@ -109,13 +110,35 @@ assignment = (
 )
 
 
+# strings (any start/quantity: a bad one is a minor fault) and a timer function block
+text = st.text(alphabet="abcXYZ 09$'", max_size=90).map(
+    lambda x: "'" + x.replace("$", "$$").replace("'", "$'") + "'"
+)
+small = st.one_of(st.integers(-2, 90).map(str), st.sampled_from(["k", "si", "d"]))
+string_call = st.one_of(
+    st.tuples(st.sampled_from(["s1", "s2"]), text).map(lambda p: f"{p[0]} := {p[1]};\n"),
+    st.tuples(st.sampled_from(["s1", "s2"]), st.sampled_from(["s1", "s2"])).map(
+        lambda p: f"CONCAT({p[0]}, {p[1]}, s1);\n"
+    ),
+    st.tuples(small, small).map(lambda p: f"MID(s1, {p[0]}, {p[1]}, s2);\n"),
+    st.tuples(small, small).map(lambda p: f"DELETE(s1, {p[0]}, {p[1]}, s2);\n"),
+    small.map(lambda x: f"INSERT(s1, s2, {x}, s1);\n"),
+    small.map(lambda x: f"FIND(s1, s2, {x}, k);\n"),
+    st.sampled_from(["UPPER(s1, s2);\n", "DTOS(d, s1);\n", "RTOS(r, s2);\n", "STOD(s1, k);\n"]),
+    st.tuples(int_expr, bool_expr).map(
+        lambda p: f"ft.PRE := {p[0]};\nft.TimerEnable := {p[1]};\nTONR(ft);\nk := ft.ACC;\n"
+    ),
+)
+
+
 def statements(depth: int = 0) -> st.SearchStrategy[str]:
     if depth >= 2:
-        return assignment
+        return st.one_of(assignment, assignment, string_call)
     body = st.lists(statements(depth + 1), min_size=1, max_size=3).map("".join)
     return st.one_of(
         assignment,
         assignment,
+        string_call,
         st.tuples(bool_expr, body, body).map(
             lambda p: f"IF {p[0]} THEN\n{p[1]}ELSE\n{p[2]}END_IF;\n"
         ),
@@ -154,6 +177,13 @@ instructions = st.one_of(
         lambda p: f"{p[0]}({p[1]},{p[2]},{p[3]})"
     ),
     st.tuples(operand, target).map(lambda p: f"MOV({p[0]},{p[1]})"),
+    st.tuples(st.sampled_from(["TON", "TOF", "RTO"]), st.integers(-5, 100)).map(
+        lambda p: f"{p[0]}(t,{p[1]},?)"
+    ),
+    st.tuples(st.sampled_from(["CTU", "CTD"]), st.integers(-5, 100)).map(
+        lambda p: f"{p[0]}(c,{p[1]},?)"
+    ),
+    st.sampled_from(["RES(t)", "RES(c)", "CONCAT(s1,s2,s1)", "MID(s1,3,80,s2)", "FIND(s1,s2,1,k)"]),
     st.tuples(target, num_expr).map(lambda p: f"CPT({p[0]},{p[1]})"),
     st.tuples(st.sampled_from(["EQU", "NEQ", "LES", "GRT", "LEQ", "GEQ"]), operand, operand).map(
         lambda p: f"{p[0]}({p[1]},{p[2]})"
