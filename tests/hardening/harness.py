@@ -4,6 +4,7 @@ memory blow-up fails the test instead of the machine."""
 
 from __future__ import annotations
 
+import os
 import resource
 import subprocess
 import sys
@@ -48,6 +49,13 @@ def logixst(*argv: str | Path, timeout: float = 60.0, cwd: Path | None = None) -
         timeout=timeout,
         cwd=cwd or ROOT,
         preexec_fn=_limit_memory,
-        env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"},
+        # one BLAS thread: numpy reserves address space per thread, which on a many-core
+        # machine alone could approach the bound
+        env={
+            **os.environ,
+            "PYTHONPATH": str(ROOT),
+            "OPENBLAS_NUM_THREADS": "1",
+            "OMP_NUM_THREADS": "1",
+        },
     )
     return Outcome(r.returncode, r.stdout, r.stderr, time.monotonic() - start)
