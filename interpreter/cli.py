@@ -13,10 +13,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .diagnostics import Diagnostic, Severity, has_errors
+from .limits import (
+    MAX_COARSE_UPDATE_MS,
+    MAX_SCAN_PERIOD_MS,
+    MAX_SCANS,
+    MIN_COARSE_UPDATE_MS,
+    MIN_SCAN_PERIOD_MS,
+)
 from .plot import PlotData, Series, require_matplotlib, write_plot
 from .runtime.loader import SUFFIXES, InputError, is_project, load
 from .semantics.types import DataType, Elementary, StructType
-from .syntax.literals import parse_number, parse_string
+from .syntax.literals import LiteralError, parse_number, parse_string
 from .vm.context import DEFAULT_WATCHDOG
 
 if TYPE_CHECKING:
@@ -25,6 +32,12 @@ if TYPE_CHECKING:
 EXIT_OK, EXIT_VERIFY, EXIT_USAGE, EXIT_FAULT = 0, 1, 2, 3
 _RECURSION_LIMIT = 60_000  # AST walks take about three frames per level
 _STACK_BYTES = 512 * 1024 * 1024  # reserved address space; only the pages used are touched
+
+
+def _json(obj: object, indent: int | None = None) -> str:
+    """Strict JSON: tag values arrive with non-finite REALs as text (to_json_value), so a
+    NaN or infinity left anywhere else is a bug that must fail loudly, not print `NaN`."""
+    return json.dumps(obj, indent=indent, allow_nan=False)
 
 
 class UsageError(Exception):
@@ -36,45 +49,133 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(message)
 
 
+def _version() -> str:
+    """The installed distribution's version (pyproject.toml is its one source)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("logixst")
+    except PackageNotFoundError:  # run from a source tree that was never installed
+        return "(not installed)"
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="logixst", description="Run and verify Logix 5000 Structured Text off the controller."
     )
+    p.add_argument("--version", action="version", version=f"logixst {_version()}")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    run = sub.add_parser("run", help="run a program on simulated time")
-    run.add_argument("programs", nargs="+", type=Path, metavar="PROGRAM")
+    run = sub.add_parser(
+        "run",
+        help="run a program on simulated time",
+        description="Verify, then run a program (files named together form one program) "
+        "on simulated time and print the watched tag values.",
+    )
+    run.add_argument(
+        "programs",
+        nargs="+",
+        type=Path,
+        metavar="PROGRAM",
+        help=".st/.rll files of one program, or one .L5X/.L5K export",
+    )
     length = run.add_mutually_exclusive_group()
-    length.add_argument("--duration", type=float, metavar="S", help="simulated seconds (default 1)")
-    length.add_argument("--scans", type=int, metavar="N", help="number of normal scans")
-    run.add_argument("--scan-period", type=float, default=1.0, metavar="MS")
-    run.add_argument("--coarse-update", type=float, default=None, metavar="MS")
-    run.add_argument("--set", action="append", default=[], metavar="TAG=VALUE")
-    run.add_argument("--watch", action="append", default=[], metavar="EXPR")
-    run.add_argument("--trace", type=Path, metavar="FILE.csv")
+    length.add_argument(
+        "--duration",
+        type=float,
+        metavar="S",
+        help=f"simulated seconds (default 1; at most {MAX_SCANS:,} scans in all)",
+    )
+    length.add_argument(
+        "--scans", type=int, metavar="N", help=f"number of normal scans (0 to {MAX_SCANS:,})"
+    )
+    run.add_argument(
+        "--scan-period",
+        type=float,
+        default=1.0,
+        metavar="MS",
+        help=f"task period in milliseconds (default 1; {MIN_SCAN_PERIOD_MS:g} to {MAX_SCAN_PERIOD_MS:,.0f})",
+    )
+    run.add_argument(
+        "--coarse-update",
+        type=float,
+        default=None,
+        metavar="MS",
+        help="motion planner period in milliseconds, "
+        f"{MIN_COARSE_UPDATE_MS:g} to {MAX_COARSE_UPDATE_MS:g} (default: the MOTION_GROUP's, else 2)",
+    )
+    run.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="TAG=VALUE",
+        help="give a tag an ST literal value before the first scan (repeatable)",
+    )
+    run.add_argument(
+        "--watch",
+        action="append",
+        default=[],
+        metavar="EXPR",
+        help="a tag reference to report, e.g. Axis1.ActualPosition, arr[2], d.5 "
+        "(repeatable; default all elementary program tags)",
+    )
+    run.add_argument(
+        "--trace",
+        type=Path,
+        metavar="FILE.csv",
+        help="write the watched values of every scan as CSV (never over an input file)",
+    )
     run.add_argument(
         "--plot",
         type=Path,
         metavar="FILE.png",
-        help="draw the traced signals (needs the plot extra)",
+        help="draw the traced signals as a PNG image (needs the plot extra)",
     )
-    run.add_argument("--json", action="store_true")
-    run.add_argument("--watchdog", type=int, default=DEFAULT_WATCHDOG, metavar="N")
+    run.add_argument(
+        "--json", action="store_true", help="print one JSON report instead of the table"
+    )
+    run.add_argument(
+        "--watchdog",
+        type=int,
+        default=DEFAULT_WATCHDOG,
+        metavar="N",
+        help=f"statements/instructions one scan may execute before fault 6/1 (default {DEFAULT_WATCHDOG:,})",
+    )
     run.add_argument(
         "--tags",
         type=Path,
         metavar="FILE.L5X",
         help="controller tags and data types (an .L5X or .L5K export) for .st/.rll files",
     )
-    check = sub.add_parser("check", help="verify without running")
-    check.add_argument("paths", nargs="+", type=Path, metavar="PATH")
-    check.add_argument("--format", choices=["text", "json", "github", "sarif"], default="text")
+    check = sub.add_parser(
+        "check",
+        help="verify without running",
+        description="Verify programs without running them: one diagnostic per line, "
+        "exit 0 without errors, 1 with errors, 2 for a usage or input-file error.",
+    )
+    check.add_argument(
+        "paths",
+        nargs="+",
+        type=Path,
+        metavar="PATH",
+        help=".st/.rll files (one program), directories (one program each) or .L5X/.L5K exports",
+    )
+    check.add_argument(
+        "--format",
+        choices=["text", "json", "github", "sarif"],
+        default="text",
+        help="output format (default text)",
+    )
     check.add_argument(
         "--tags",
         type=Path,
         metavar="FILE.L5X",
         help="controller tags and data types (an .L5X or .L5K export) for .st/.rll files",
     )
-    lsp = sub.add_parser("lsp", help="language server for editors (stdio unless --tcp)")
+    lsp = sub.add_parser(
+        "lsp",
+        help="language server for editors (stdio unless --tcp)",
+        description="Language server (LSP) for editors, on stdio unless --tcp is given.",
+    )
     lsp.add_argument(
         "--tcp",
         metavar="HOST:PORT",
@@ -99,6 +200,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     except KeyboardInterrupt:
         return 130
+    except SystemExit as exc:  # argparse ends --help and --version with exit(0)
+        return exc.code if isinstance(exc.code, int) else EXIT_USAGE
     except RecursionError:  # beyond even _with_deep_stack's limit: refuse, never a traceback
         print(
             "logixst: error: the program nests expressions, statements or branches too deeply to analyse",
@@ -135,6 +238,8 @@ def parse_set_value(text: str, target: DataType | None = None) -> object:
     digits = t[1:] if neg or t.startswith("+") else t
     try:
         value, _ = parse_number(digits)
+    except LiteralError as exc:  # a number no Logix type holds, as the checker's E133 says
+        raise UsageError(f"--set: {exc}") from None
     except ValueError:
         raise UsageError(f"--set: '{text}' is not an ST literal") from None
     if (
@@ -159,17 +264,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     # The controller (and numpy, for motion) is imported here so `check` starts faster.
     from .runtime.controller import Controller, WatchError
 
-    if not 0 < args.scan_period < math.inf:  # also rejects nan
-        raise UsageError("--scan-period must be a finite number > 0")
-    if args.scans is not None and args.scans < 0:
-        raise UsageError("--scans must be >= 0")
-    if args.duration is not None and not 0 <= args.duration < math.inf:
-        raise UsageError("--duration must be a finite number >= 0")
-    if args.watchdog <= 0:
-        raise UsageError("--watchdog must be > 0")
-    if args.coarse_update is not None and not 0 < args.coarse_update < math.inf:
-        raise UsageError("--coarse-update must be a finite number of milliseconds > 0")
+    _check_run_options(args)
     scans = args.scans if args.scans is not None else _scan_count(args.duration, args.scan_period)
+    _refuse_overwriting_inputs(args)
     if args.plot is not None:  # refuse before running (docs/decisions/0102-plot.md)
         if args.plot.suffix.lower() != ".png":
             raise UsageError(f"--plot writes a PNG image: '{args.plot}' should end in .png")
@@ -181,7 +278,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         _print_diags(loaded.diagnostics)
         if args.json:
             print(
-                json.dumps(
+                _json(
                     {
                         "time": 0.0,
                         "scans": 0,
@@ -233,7 +330,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     sim_time = ctl.scans * args.scan_period / 1000.0
     if args.json:
         print(
-            json.dumps(
+            _json(
                 {
                     "time": sim_time,
                     "scans": ctl.scans,
@@ -245,7 +342,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             )
         )
     else:
-        _print_table(tags)
+        _print_table(tags, {w: t for w, _, t in watches})
         for f in faults:
             print(f.text(), file=sys.stderr)
     return EXIT_OK if ok else EXIT_FAULT
@@ -271,15 +368,56 @@ def _unsupported(diags: list[Diagnostic]) -> list[dict[str, object]]:
     return out
 
 
+def _check_run_options(args: argparse.Namespace) -> None:
+    """Every numeric option in its range before anything is read (docs/limits.md)."""
+    if not MIN_SCAN_PERIOD_MS <= args.scan_period <= MAX_SCAN_PERIOD_MS:  # also rejects nan
+        raise UsageError(
+            f"--scan-period {args.scan_period:g} ms is outside "
+            f"{MIN_SCAN_PERIOD_MS:g}..{MAX_SCAN_PERIOD_MS:,.0f} ms"
+        )
+    if args.scans is not None and not 0 <= args.scans <= MAX_SCANS:
+        raise UsageError(f"--scans {args.scans} is outside 0..{MAX_SCANS:,}")
+    if args.duration is not None and not 0 <= args.duration < math.inf:
+        raise UsageError("--duration must be a finite number >= 0")
+    if args.watchdog <= 0:
+        raise UsageError("--watchdog must be > 0")
+    if args.coarse_update is not None and not (
+        MIN_COARSE_UPDATE_MS <= args.coarse_update <= MAX_COARSE_UPDATE_MS
+    ):
+        raise UsageError(
+            f"--coarse-update {args.coarse_update:g} ms is outside "
+            f"{MIN_COARSE_UPDATE_MS:g}..{MAX_COARSE_UPDATE_MS:g} ms (the coarse update periods Logix allows)"
+        )
+
+
 def _scan_count(duration: float | None, scan_period_ms: float) -> int:
-    """Scans in `duration` simulated seconds; a duration so long that the count overflows is refused."""
+    """Scans in `duration` simulated seconds, at most MAX_SCANS (docs/limits.md)."""
     seconds = 1.0 if duration is None else duration
     total = seconds * 1000.0 / scan_period_ms
-    if not math.isfinite(total):
+    if not total <= MAX_SCANS:  # also an overflow to inf
         raise UsageError(
-            f"--duration {seconds:g} s at a {scan_period_ms:g} ms scan period is too many scans to count"
+            f"--duration {seconds:g} s at a {scan_period_ms:g} ms scan period is too many scans "
+            f"(the limit is {MAX_SCANS:,})"
         )
     return round(total)
+
+
+def _refuse_overwriting_inputs(args: argparse.Namespace) -> None:
+    """--trace and --plot never write over a program or export named on the command line."""
+    inputs = [*args.programs, *([args.tags] if args.tags is not None else [])]
+    for option, out in (("--trace", args.trace), ("--plot", args.plot)):
+        if out is None:
+            continue
+        for p in inputs:
+            if _same_file(out, p):
+                raise UsageError(f"{option} {out} would overwrite the input file {p}")
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.exists() and b.exists() and a.samefile(b)
+    except OSError:
+        return a.resolve() == b.resolve()
 
 
 def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:
@@ -334,7 +472,7 @@ def _csv_value(v: object, t: object) -> object:
     if isinstance(j, bool):
         return 1 if j else 0
     if isinstance(j, dict | list):
-        return json.dumps(j)
+        return _json(j)
     return j
 
 
@@ -405,13 +543,15 @@ def _coordinate_paths(ctl: Controller, watched: list[str]) -> list[tuple[str, li
     return out
 
 
-def _print_table(tags: dict[str, object]) -> None:
+def _print_table(tags: dict[str, object], types: dict[str, DataType]) -> None:
     if not tags:
         print("(no elementary tags to show; use --watch)")
         return
     width = max(len(k) for k in tags)
     for k, v in tags.items():
-        shown = json.dumps(v) if not isinstance(v, str) else repr(v)
+        t = types.get(k)
+        real = isinstance(t, Elementary) and t.is_real  # Infinity/NaN: a number, not a STRING
+        shown = _json(v) if not isinstance(v, str) else v if real else repr(v)
         print(f"{k.ljust(width)}  {shown}")
 
 
@@ -454,9 +594,12 @@ def cmd_check(args: argparse.Namespace) -> int:
             raise InputError(f"{p}: no such file or directory")
         if p.is_dir():
             members = sorted(x for x in p.iterdir() if x.suffix.lower() in SUFFIXES)
+            projects = [[x] for x in sorted(p.iterdir()) if is_project(x)]
+            if not members and not projects:  # "0 error(s)" would claim something was checked
+                raise UsageError(f"{p}: no .st, .rll, .L5X or .L5K files in this directory")
             if members:
                 groups.append(members)
-            groups.extend([x] for x in sorted(p.iterdir()) if is_project(x))
+            groups.extend(projects)
         elif is_project(p):
             groups.append([p])  # each .L5X or .L5K is one project (SPEC 9.8)
         else:
@@ -473,7 +616,7 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
     if fmt == "json":
-        print(json.dumps([d.to_json() for d in diags], indent=2))
+        print(_json([d.to_json() for d in diags], indent=2))
     elif fmt == "github":
         for d in diags:
             kind = (
@@ -488,7 +631,7 @@ def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
                 f"endColumn={d.span.end_col},title={d.code}::{d.message}"
             )
     elif fmt == "sarif":
-        print(json.dumps(_sarif(diags), indent=2))
+        print(_json(_sarif(diags), indent=2))
     else:
         for d in diags:
             print(d.text())
@@ -561,7 +704,10 @@ def _with_deep_stack(fn: Callable[[], int]) -> int:
     result = [EXIT_USAGE]
 
     def run() -> None:
-        result[0] = fn()
+        try:
+            result[0] = fn()
+        except SystemExit as exc:  # argparse's --help and --version end with exit(0)
+            result[0] = exc.code if isinstance(exc.code, int) else EXIT_USAGE
 
     worker = threading.Thread(target=run, name="logixst", daemon=True)
     worker.start()

@@ -67,6 +67,8 @@ _TABLE: list[tuple[str, str]] = [
     ("E129", "empty rung"),
     ("E130", "named parameters are only for function blocks"),
     ("E131", "ladder label missing, repeated or misplaced"),
+    ("E132", "a size or nesting limit is exceeded (docs/limits.md)"),
+    ("E133", "literal out of range for any Logix type, or too long"),
     # warnings
     ("W201", "FOR index assigned in the loop body"),
     ("W202", "shorted ladder branch"),

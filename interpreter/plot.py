@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-INSTALL_HINT = "pip install logixst[plot]"
+INSTALL_HINT = 'pip install -e ".[plot]" (from the repository root)'
 
 # last member name (upper case) -> unit group, in the order the subplots appear
 _UNITS: tuple[tuple[str, str], ...] = (

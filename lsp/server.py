@@ -15,7 +15,9 @@ from collections.abc import Callable
 from typing import Any, TypeVar
 
 from lsprotocol import types as t
+from pygls.exceptions import JsonRpcException
 from pygls.lsp.server import LanguageServer
+from pygls.protocol import LanguageServerProtocol
 from pygls.workspace.text_document import TextDocument
 
 from interpreter.syntax import nodes as n
@@ -37,10 +39,38 @@ VERSION = "0.1.0"
 R = TypeVar("R")
 
 
+class _Ignored:
+    """A message already answered with an error: pygls' dispatcher skips it (unknown version)."""
+
+    jsonrpc = "ignored"
+
+    def __repr__(self) -> str:  # pygls logs it as an unknown message
+        return "(a request already answered with an error)"
+
+
+class LogixProtocol(LanguageServerProtocol):
+    """Answers a request whose parameters do not deserialise (a negative position, a string
+    where an object belongs) with a JSON-RPC error, as the protocol requires. pygls raises
+    while decoding and never answers: the editor would wait on that request forever (found
+    by tests/fuzz/test_lsp_fuzz.py)."""
+
+    def structure_message(self, data: dict[str, Any]) -> Any:
+        try:
+            return super().structure_message(data)
+        except JsonRpcException as exc:
+            if "id" in data and "method" in data:
+                self._send_response(data["id"], error=exc.to_response_error())
+                return _Ignored()
+            raise
+
+
 class LogixServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__(
-            "logixst", VERSION, text_document_sync_kind=t.TextDocumentSyncKind.Incremental
+            "logixst",
+            VERSION,
+            text_document_sync_kind=t.TextDocumentSyncKind.Incremental,
+            protocol_cls=LogixProtocol,
         )
         self.docs = Workspace()
         self.pending: dict[str, asyncio.TimerHandle] = {}

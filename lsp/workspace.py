@@ -14,6 +14,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 from interpreter.diagnostics import Diagnostic
+from interpreter.limits import MAX_PROJECT_BYTES, MAX_SOURCE_BYTES, LimitError, read_limited
 from interpreter.semantics.document import (
     PROGRAM_SUFFIXES,
     PROJECT_SUFFIXES,
@@ -25,8 +26,6 @@ from interpreter.semantics.document import (
 )
 from interpreter.semantics.incremental import ExportState
 from interpreter.syntax.l5x import L5XProject
-
-MAX_DOCUMENT_CHARS = 64 * 1024 * 1024  # as the CLI's file size limit
 
 
 def uri_to_path(uri: str) -> str:
@@ -115,7 +114,8 @@ class Workspace:
         doc = self.documents.get(uri)
         if doc is None or doc.language is None:
             return None
-        if len(doc.text) > MAX_DOCUMENT_CHARS or looks_binary(doc.text[:8192].encode()):
+        limit = MAX_PROJECT_BYTES if doc.language == "l5x" else MAX_SOURCE_BYTES  # as the CLI
+        if len(doc.text) > limit or looks_binary(doc.text[:8192].encode()):
             return None  # `check` refuses such a file as input: nothing to verify
         sources = self._program_sources(doc) if doc.language != "l5x" else []
         key: tuple[object, ...] = (doc.text, self.tags_path, tuple(sources))
@@ -188,9 +188,9 @@ class Workspace:
         for name in sorted(paths):
             text = open_text.get(name)
             if text is None:
-                try:
-                    text = Path(name).read_text(encoding="utf-8", errors="replace")
-                except OSError:
+                try:  # bounded, regular files only, as the CLI reads them (docs/limits.md)
+                    text = read_limited(Path(name), MAX_SOURCE_BYTES).decode("utf-8", "replace")
+                except (OSError, LimitError):
                     continue
             sources.append(Source(name, text))
         return sources
@@ -199,8 +199,8 @@ class Workspace:
         if not self.tags_path:
             return None
         try:
-            data = Path(self.tags_path).read_bytes()
-        except OSError:
+            data = read_limited(Path(self.tags_path), MAX_PROJECT_BYTES)
+        except (OSError, LimitError):
             return None
         project, _ = read_export(self.tags_path, data)
         return None if project is None else (project, self.tags_path)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -9,8 +10,8 @@ from typing import Any
 from ..compiler.ladder_compiler import compile_ladder
 from ..compiler.st_compiler import RoutineCompiler, compile_routine
 from ..semantics.aoi import Aoi
-from ..semantics.checker import Checker
-from ..semantics.types import ArrayType, DataType, Elementary, Kind, StructType
+from ..semantics.checker import ST_SYSTEM_FLAGS, SYSTEM_FLAGS, Checker
+from ..semantics.types import BOOL, ArrayType, DataType, Elementary, Kind, StructType
 from ..syntax import nodes as n
 from ..syntax.st_parser import parse_expression
 from ..vm.codegen import HELPERS, Translator
@@ -238,6 +239,9 @@ class Controller:
     ) -> tuple[Callable[[], object], DataType, Callable[[object], None]]:
         """Getter, type and setter for a tag reference such as `Axis1.ActualPosition`
         (as_ref: the getter gives the elementary storage location, a Ref or BitRef)."""
+        flag = self._system_flag(text)
+        if flag is not None:
+            return flag
         try:
             expr = parse_expression(text.strip())
         except ValueError as exc:
@@ -311,6 +315,35 @@ class Controller:
 
         return (lambda: fn(self.T, self.ctx)), t, setter
 
+    def _system_flag(
+        self, text: str
+    ) -> tuple[Callable[[], object], DataType, Callable[[object], None]] | None:
+        """`S:FS`, `S:N` ... as a watch (SPEC 9.17, docs/decisions/0131-cli-system-flags.md).
+
+        A watch reads the flag as it stands at the end of the scan, as any watched tag. S:FS
+        is readable for every program; the arithmetic flags only where ladder sets them.
+        The controller owns every flag: `--set` of one is refused, never ignored.
+        """
+        key = text.strip().upper()
+        if key not in SYSTEM_FLAGS:
+            return None
+        name = SYSTEM_FLAGS[key]
+        if key not in ST_SYSTEM_FLAGS and not any(
+            r.language == "rll" for r in self.model.all_routines()
+        ):
+            raise WatchError(
+                f"'{text}' is available in ladder only, and this program has no ladder routine"
+            )
+        ctx = self.ctx
+
+        def getter() -> object:
+            return ctx.first_scan if name == "FS" else ctx.status.get(name, 0)
+
+        def setter(value: object) -> None:
+            raise WatchError(f"'{text}' is a status flag the controller sets: it cannot be set")
+
+        return getter, BOOL, setter
+
 
 def _qualify(e: n.Expr) -> n.Expr:
     """`Program:Main.Tag...` parses as member Tag of `Program:Main`: make the root one name."""
@@ -349,13 +382,27 @@ def _literal_type(value: object, target: Elementary) -> Elementary:
     return LREAL if isinstance(value, float) else DINT
 
 
+NON_FINITE = {math.inf: "Infinity", -math.inf: "-Infinity"}
+
+
+def json_real(x: float) -> float | str:
+    """A REAL for JSON: itself when finite, else the text "Infinity", "-Infinity" or "NaN".
+
+    Strict JSON has no token for them (docs/decisions/0132-non-finite-reals-in-json.md);
+    the texts are those JavaScript and Python print, so `float(text)` reads them back.
+    """
+    if math.isfinite(x):
+        return x
+    return "NaN" if x != x else NON_FINITE[x]
+
+
 def to_json_value(value: object, t: DataType | None) -> object:
     """JSON form of a tag value: BOOL true/false, integers, floats, STRING text, objects."""
     if isinstance(t, Elementary):
         if t.kind is Kind.BOOL:
             return bool(value)
         if t.kind is Kind.REAL:
-            return float(value)  # type: ignore[arg-type]
+            return json_real(float(value))  # type: ignore[arg-type]
         return int(value)  # type: ignore[call-overload]
     if isinstance(t, StructType):
         assert isinstance(value, list)

@@ -8,6 +8,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..diagnostics import Diagnostic
+from ..limits import MAX_PROJECT_BYTES, MAX_SOURCE_BYTES, LimitError, read_limited
 from ..semantics.document import (
     PROGRAM_SUFFIXES,
     PROJECT_SUFFIXES,
@@ -22,7 +23,6 @@ from ..semantics.document import (
 from ..syntax import nodes as n
 from ..syntax.l5x import L5XProject
 
-MAX_FILE_BYTES = 64 * 1024 * 1024
 SUFFIXES = PROGRAM_SUFFIXES  # program files `run` and `check` read
 
 
@@ -32,7 +32,7 @@ class InputError(Exception):
 
 def _require_file(path: Path) -> None:
     if not path.exists():
-        raise InputError(f"{path}: no such file")
+        raise InputError(f"{path}: no such file or directory")
     if path.is_dir():
         raise InputError(f"{path}: is a directory, expected a .st or .rll file")
 
@@ -40,11 +40,11 @@ def _require_file(path: Path) -> None:
 def read_bytes(path: Path) -> bytes:
     """The file's bytes after the checks every input gets (exists, size, not empty, text)."""
     _require_file(path)
+    limit = MAX_PROJECT_BYTES if is_project(path) else MAX_SOURCE_BYTES
     try:
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise InputError(f"{path}: file is too large ({size} bytes)")
-        data = path.read_bytes()
+        data = read_limited(path, limit)
+    except LimitError as exc:
+        raise InputError(f"{path}: {exc}") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror}") from exc
     if not data.strip():

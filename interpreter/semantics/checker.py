@@ -16,10 +16,14 @@ from stdlib import Instruction, Operand, catalog
 
 from ..diagnostics import Diagnostic, diag
 from ..instructions.registry import LOWERED, has_implementation
+from ..limits import MAX_TAG_ELEMENTS
 from ..syntax import nodes as n
+from ..syntax.literals import literal_problem
 from . import time_types
 from .aoi import Aoi, same_shape
 from .ladder_check import LadderChecks
+from .limits_check import routine_limits, storage_limit
+from .motion_config import config_problem
 from .program import ProgramModel, Tag, const_number, module_tag_note, scoped_programs
 from .suggest import NameIndex
 from .types import (
@@ -324,6 +328,18 @@ class Checker(LadderChecks):
         """Check routine by routine, yielding each one once checked, then None after the tag
         data: the language server keeps what each routine added (decision 0117)."""
         projects = bool(self.model.programs)
+        beyond = storage_limit(self.model.tags.values())
+        if beyond is not None:  # refused before `run` allocates it (docs/limits.md)
+            tag, total = beyond
+            self.a.diags.append(
+                diag(
+                    "E132",
+                    f"tag '{tag.name}' takes the program's storage to {total:,} values: "
+                    f"the limit is {MAX_TAG_ELEMENTS:,} for all tags together",
+                    tag.path,
+                    tag.span,
+                )
+            )
         for r in self.model.routines:
             self.routine(r, r.program_name if projects else None)
             yield r
@@ -347,6 +363,11 @@ class Checker(LadderChecks):
         self.language = r.language
         self.scope = scope
         self.check_initialisers(r)
+        beyond = routine_limits(r)  # measured first: the walks below recurse (docs/limits.md)
+        for message, span in beyond:
+            self.err("E132", message, span)
+        if beyond:
+            return
         if r.language == "st":
             self.stmts(r.body)
         elif r.language == "rll":
@@ -430,6 +451,10 @@ class Checker(LadderChecks):
                         self.err("E118", "a coordinate system has 2 or 3 axes", value.span)
                     continue
                 self.check_init(value, mt)
+                number = const_number(value)
+                problem = None if number is None else config_problem(t.name, mname, number)
+                if problem is not None:
+                    self.err("E118", problem, _init_span(value))
             return
         # a single value
         if isinstance(t, ArrayType):
@@ -439,6 +464,7 @@ class Checker(LadderChecks):
             return
         if isinstance(t, StructType):
             if t.is_string and isinstance(init, n.Literal) and init.type == "STRING":
+                self.string_fits(t, init)
                 return
             self.err(
                 "E118",
@@ -449,6 +475,9 @@ class Checker(LadderChecks):
         if isinstance(init, n.Literal) and init.type == "STRING":
             self.err("E116", f"a STRING cannot initialise a {t}", init.span)
             return
+        literal = init.operand if isinstance(init, n.Unary) else init
+        if isinstance(literal, n.Literal):
+            self.literal_limits(literal)
         if const_number(init) is None:
             self.err("E118", "an initial value must be a literal", _init_span(init))
 
@@ -594,12 +623,31 @@ class Checker(LadderChecks):
             )
         if tt is None or vt is None:
             return
+        self.string_fits(tt, s.value)
         if isinstance(tt, Elementary) and isinstance(vt, Elementary) and (tt.unit or vt.unit):
             why = time_types.assignable(tt, vt, isinstance(s.value, n.Literal))
             if why is not None:
                 self.err("E121", why, s.value.span)
             return
         self.check_assignable(tt, vt, s.value.span)
+
+    def string_fits(self, tt: DataType, value: object) -> None:
+        """E133: a string literal longer than the target STRING type holds (never truncated)."""
+        if not (
+            isinstance(value, n.Literal)
+            and isinstance(value.value, bytes)
+            and isinstance(tt, StructType)
+            and tt.is_string
+        ):
+            return
+        data = tt.members[1][1]
+        capacity = data.size if isinstance(data, ArrayType) else 0
+        if len(value.value) > capacity:
+            self.err(
+                "E133",
+                f"string literal of {len(value.value)} characters: a {tt.name} holds {capacity}",
+                value.span,
+            )
 
     def check_assignable(self, tt: DataType, vt: DataType, span: n.Span) -> None:
         t_str = isinstance(tt, StructType) and tt.is_string
@@ -1299,10 +1347,18 @@ class Checker(LadderChecks):
         return None
 
     def literal(self, e: n.Literal) -> DataType | None:
+        if len(e.text) > 18:  # shorter integer texts always fit 64 bits: no second parse
+            self.literal_limits(e)
         t = self._literal_types.get(e.type, _UNRESOLVED)  # a handful of names: BOOL DINT REAL...
         if t is _UNRESOLVED:
             t = self._literal_types[e.type] = self.model.types.get(e.type)
         return t
+
+    def literal_limits(self, e: n.Literal) -> None:
+        """E133 for a literal no Logix type holds (docs/decisions/0133-literal-limits.md)."""
+        problem = literal_problem(e.text) if e.type not in ("STRING", "BOOL") else None
+        if problem is not None:
+            self.err("E133", problem, e.span)
 
     def member(self, e: n.Member) -> DataType | None:
         bt = self.expr(e.base)

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic, diag
+from ..limits import MAX_ARRAY_ELEMENTS
 from ..syntax import nodes as n
 from .types import ArrayType, DataType, Elementary, StructType, TypeTable, unknown_type
 
@@ -189,6 +191,17 @@ def resolve_typeref(
             )
             return unknown_type(ref.name)
         sizes.append(hi - lo + 1)
+    count = math.prod(sizes)
+    if count > MAX_ARRAY_ELEMENTS:  # refused here, before anything allocates it (docs/limits.md)
+        diags.append(
+            diag(
+                "E132",
+                f"array of {count:,} elements: the limit is {MAX_ARRAY_ELEMENTS:,} per array",
+                path,
+                ref.span,
+            )
+        )
+        return unknown_type(ref.name)
     return ArrayType(base, tuple(sizes))
 
 

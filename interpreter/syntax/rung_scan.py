@@ -16,7 +16,7 @@ import re
 from bisect import bisect_left
 
 from . import nodes as n
-from .literals import parse_number
+from .literals import number_or_zero
 
 _BLANKS = re.compile(r"[ \t\r\n\f]*")
 _INSTR = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)[ \t\r\n\f]*\(")
@@ -262,7 +262,7 @@ class _Scanner:
         if m is None:
             raise _GiveUp
         text = m.group()
-        value, typ = parse_number(text)
+        value, typ = number_or_zero(text)  # a refused literal: the checker reports it
         node = n.Literal(value, typ, text, self.span(self.i, m.end()))
         self.i = m.end()
         return node

@@ -17,7 +17,7 @@ from lark import Lark, Token, Transformer, UnexpectedCharacters, UnexpectedInput
 from ..diagnostics import Diagnostic, diag
 from . import nodes as n
 from .comments import line_starts, strip_comments
-from .literals import parse_number, parse_string
+from .literals import LiteralError, number_or_zero, parse_number, parse_string
 from .st_lexer import SlowPath, StLexer, fast_parse
 
 MAX_ERRORS = 25
@@ -116,7 +116,7 @@ class AstBuilder(Transformer):
         return n.TypeRef(str(c[0]).upper(), [], tspan(c[0]))
 
     def type_logix_array(self, c: list) -> n.TypeRef:
-        dims = [(0, int(parse_number(str(t))[0]) - 1) for t in c[1:]]
+        dims = [(0, _dimension(str(t)) - 1) for t in c[1:]]
         return n.TypeRef(str(c[0]).upper(), dims, _join(c[0], c[-1]))
 
     def type_iec_array(self, c: list) -> n.TypeRef:
@@ -128,7 +128,7 @@ class AstBuilder(Transformer):
         return (c[0], c[1])
 
     def signed_int(self, c: list) -> int:
-        v = int(parse_number(str(c[-1]))[0])
+        v = _dimension(str(c[-1]))
         return -v if len(c) == 2 else v
 
     # The brackets are kept (named terminals in the grammar) so that the initialiser's span
@@ -267,7 +267,7 @@ class AstBuilder(Transformer):
         text = str(t)
         kind = t.type
         if kind in ("INT", "RADIX_INT", "REAL"):
-            value, typ = parse_number(text)
+            value, typ = number_or_zero(text)  # a refused literal: the checker reports it
             return n.Literal(value, typ, text, tspan(t))
         if kind == "STRING_LIT":
             return n.Literal(parse_string(text), "STRING", text, tspan(t))
@@ -461,6 +461,14 @@ def _last_line(stack: list) -> int:
         if isinstance(span, n.Span):
             return span.end_line
     return 0
+
+
+def _dimension(text: str) -> int:
+    """An array bound; one too long to read counts as too large, for the size limit to report."""
+    try:
+        return int(parse_number(text)[0])
+    except LiteralError:
+        return 1 << 64
 
 
 def _find_open(stack: list, kind: str) -> Token | None:

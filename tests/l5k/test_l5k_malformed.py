@@ -149,9 +149,15 @@ def test_empty_and_binary_files_are_input_errors(
 def test_size_limit(
     capsys: pytest.CaptureFixture[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(loader, "MAX_FILE_BYTES", 100)
+    monkeypatch.setattr(loader, "MAX_PROJECT_BYTES", 100)
     code, diags, err = check(capsys, tmp_path, GOOD)
-    assert code == 2 and diags == [] and "too large" in err and len(err.strip().splitlines()) == 1
+    assert (
+        code == 2
+        and diags == []
+        and "too large" in err
+        and "the limit is" in err
+        and len(err.strip().splitlines()) == 1
+    )
 
 
 def test_run_of_a_malformed_export_exits_1(

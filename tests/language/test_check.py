@@ -101,6 +101,10 @@ FIXTURES: dict[str, tuple[str, str]] = {
     "W204": ("MSO(ax, mc);\n", "IF b THEN MSO(ax, mc); END_IF;\n"),
     "U303": ("GSV(TASK, THIS, Priority, x);\n", "GSV(TASK, THIS, Rate, x);\n"),
     "U306": ("x := Local:1:I.Data;\n", "x := x + 1;\n"),
+    # 2,000,001 elements is one over the per-array limit (docs/limits.md)
+    "E132": ("VAR big : DINT[2000001]; END_VAR\n", "VAR big : DINT[2000000]; END_VAR\n"),
+    # 2**63 = 9223372036854775808 needs 64 bits unsigned: as a LINT it is out of range
+    "E133": ("x := 99999999999999999999;\n", "x := 999999999;\n"),
 }
 
 # U304 (recognised, not executable yet) depends on which instructions are implemented today;

@@ -359,5 +359,6 @@ def test_json_real_infinity_and_nan(st) -> None:
     src = "VAR big, inf, nan : REAL; END_VAR big := 3.0e38; inf := big * 10.0; nan := inf - inf;"
     r = st.run(src, "inf", "nan")
     assert r.code == 0
-    assert '"inf": Infinity' in r.out and '"nan": NaN' in r.out  # docs/decisions/0007
-    assert r.tags["inf"] == math.inf and math.isnan(r.tags["nan"])
+    # strict JSON: the values as strings (docs/decisions/0132, superseding 0007's bare tokens)
+    assert '"inf": "Infinity"' in r.out and '"nan": "NaN"' in r.out
+    assert float(r.tags["inf"]) == math.inf and math.isnan(float(r.tags["nan"]))

@@ -70,19 +70,27 @@ def test_cpt_with_2000_nested_parentheses_runs(tmp_path: Path) -> None:
 
 
 def test_blocks_too_deep_for_the_vm_are_refused_in_one_line(tmp_path: Path) -> None:
+    # 150 nested IFs: the 65th is beyond the 64-block limit (docs/limits.md), refused by the
+    # verification that `check` runs too, at its place: line 1 is the VAR line, so IF number
+    # 65 is on line 66
     text = "VAR x : BOOL; END_VAR\n" + "IF x THEN\n" * 150 + "x := 1;\n" + "END_IF;\n" * 150
     done = logixst(tmp_path, "ifs.st", text, "run", "--scans", "1")
-    assert done.returncode == 2
+    assert done.returncode == 1
     assert "Traceback" not in done.stderr
     assert done.stderr.strip().splitlines() == [
-        f"logixst: error: {tmp_path / 'ifs.st'}: routine 'ifs' nests statements too deeply to run (the limit is about 90 levels)"
+        f"{tmp_path / 'ifs.st'}:66:1: error E132 statement blocks nested 65 deep: the limit is 64"
     ]
 
 
-def test_beyond_the_recursion_limit_is_refused_in_one_line(tmp_path: Path) -> None:
+def test_beyond_the_expression_depth_limit_is_one_diagnostic(tmp_path: Path) -> None:
+    # 40,000 unary minus signs: the AST is 40,001 levels deep; the limit pass measures it
+    # without recursion and reports the node at depth 5,001. `x := ` takes columns 1-5, so
+    # the minus sign at depth k is at column 5 + k: depth 5,001 is column 5,006.
     text = "VAR x : DINT; a : DINT; END_VAR\nx := " + "-" * 40000 + "a;\n"
     done = logixst(tmp_path, "neg.st", text, "check")
-    assert done.returncode == 2
-    assert done.stderr.strip().splitlines() == [
-        "logixst: error: the program nests expressions, statements or branches too deeply to analyse"
+    assert done.returncode == 1
+    assert done.stdout.strip().splitlines() == [
+        f"{tmp_path / 'neg.st'}:2:5006: error E132 expression nested more than 5,000 operations"
+        " deep: the limit is 5,000 (split it with intermediate tags)",
+        "1 error(s), 0 warning(s)",
     ]

@@ -89,7 +89,7 @@ def test_missing_matplotlib_is_one_line_and_nothing_runs(mp, tmp_path, monkeypat
     )
     assert code == 2 and out == ""
     lines = err.strip().splitlines()
-    assert len(lines) == 1 and "pip install logixst[plot]" in lines[0] and "Traceback" not in err
+    assert len(lines) == 1 and 'pip install -e ".[plot]"' in lines[0] and "Traceback" not in err
     assert not trace.exists()
 
 

@@ -144,7 +144,7 @@ def test_move_types_on_a_rotary_axis(mp, move_type: int, target: float, travel: 
         ("", mam("R", "c1", 3, -1.0), 13, 3),
         # a rotary axis needs an unwind > 0: not configured, error 11, whatever the motion
         (f"  Z : AXIS_VIRTUAL := (RotaryAxis := 1, PositionUnwind := 0.0, {DYN});\n", mam("Z", "c1", 0, 10.0), 11, 0),
-        (f"  Z : AXIS_VIRTUAL := (RotaryAxis := 1, PositionUnwind := -5.0, {DYN});\n", JOG.format(axis="Z", ctl="c1", dir=0, v=1.0), 11, 0),
+        (f"  Z : AXIS_VIRTUAL := (RotaryAxis := 1, PositionUnwind := 0.0, {DYN});\n", JOG.format(axis="Z", ctl="c1", dir=0, v=1.0), 11, 0),
     ],
 )  # fmt: skip
 def test_rotary_errors(mp, decls: str, body: str, err: int, exerr: int) -> None:
