@@ -362,3 +362,28 @@ def test_absolute_start_on_a_rotary_slave_lands_on_the_law_modulo_the_unwind():
     before = float(g.command_position[s])
     after = at(g, m, s, 190.0)
     assert before == 350.0 and after == pytest.approx(20.0, abs=1e-9)
+
+
+def test_table_switch_on_a_rotary_master_as_on_a_linear_one():
+    # DOUBLE relative from master 300 (slave 0): slave = 2 U (U the unwound master; the
+    # start jumps by P(300) = 600). HALF (P = x over a turn) is selected at U = 340 and takes
+    # over at the pass end U = 360, slave 720 there: then slave = 720 + (U - 360), the
+    # update crossing the end still commanding the old law (U = 380: 760), the next one
+    # moving on from there (U = 400: 720 + 40 = 760, U = 420: 780, U = 800: 1160).
+    half = calculate_cam_profile([0.0, 360.0], [0.0, 360.0], [0, 0])
+    want = {340.0: 680.0, 380.0: 760.0, 400.0: 760.0, 420.0: 780.0, 800.0: 1160.0}
+    results = []
+    for rotary in (True, False):
+        g, m, s = rotary_setup(300.0) if rotary else setup(master_at=300.0)
+        c = g.start_position_cam(s, m, CamLaw(DOUBLE, periodic=True, slave_absolute=False))
+        g.update()
+        got = {}
+        for u in (340.0, 380.0, 400.0, 420.0, 500.0, 600.0, 700.0, 800.0):
+            got[u] = at(g, m, s, u % 360.0 if rotary else u)
+            if u == 340.0:
+                law = CamLaw(half, periodic=True, slave_absolute=False)
+                assert switch_table(g.position_cams, c, law) == CamInError.NONE
+        for u, y in want.items():
+            assert got[u] == pytest.approx(y, abs=1e-9), (rotary, u, got[u])
+        results.append(got)
+    assert all(abs(results[0][u] - results[1][u]) < 1e-9 for u in results[0])
