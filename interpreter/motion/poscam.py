@@ -14,6 +14,11 @@ The law of one coupling, evaluated at every coarse update:
 - c(t) is the ramp-in compensation: it starts at the jump the law would make at coupling
   and runs to 0 as a trapezoid (VelocityDiff, Acceleration, Deceleration) starting at rest,
   so the velocity the slave adds to the cam never exceeds VelocityDiff.
+Rotary axes (decision 0137): a rotary master's travel is accumulated through the wrap the
+short way round (rotary.travel, as gears and master clocks count it), so X runs on; a
+rotary slave's contribution is a change of position taken the short way round, which the
+group wraps, and its ramp-in compensates forward only (ramp_in_pos) or in reverse only
+(ramp_in_neg).
 The cam profiles are evaluated with cam.ProfileBank (one searchsorted for every row), the
 evaluation the time cams use.
 """
@@ -39,6 +44,7 @@ from interpreter.motion.process import (
     Events,
     LevelSel,
 )
+from interpreter.motion.rotary import travel, travel_array, wrap
 
 if TYPE_CHECKING:
     from interpreter.motion.group import MotionGroup
@@ -153,6 +159,12 @@ class Coupling:
     lock: tuple[int, float] | None = None  # MAPC armed: (schedule, MasterLockPosition)
     prev_master: float | None = None  # the master position at the previous update (lock)
     mapc: bool = False  # shows in the axis PositionCam* status bits
+    # rotary axes (decision 0137): the master's unwind (its travel is accumulated the short
+    # way round, as the gears and master clocks do) and the slave's (its contribution is a
+    # change of position, taken the short way round; the group wraps the position)
+    m_unwind: float = 0.0
+    s_unwind: float = 0.0
+    mu: float = 0.0  # the master position of the previous update, unwrapped
     # row state (copied from/to the set's arrays when rows are rebuilt)
     m0: float = 0.0
     base: float = 0.0
@@ -292,6 +304,7 @@ class PositionCamSet:
         for i, c in enumerate(self.rows):
             c.k = float(self._k[i])
             c.last = float(self._last[i])
+            c.mu = float(self._mu[i])
             c.ramp_t = float(self._rt[i])
             c.peak = float(self._peak[i])
             c.v = float(self._v[i])
@@ -344,6 +357,11 @@ class PositionCamSet:
         self._k0 = np.array([c.k0 for c in rows], dtype=f)
         self._k = np.array([c.k for c in rows], dtype=f)
         self._last = np.array([c.last for c in rows], dtype=f)
+        self._mu = np.array([c.mu for c in rows], dtype=f)
+        self._mun = np.array([c.m_unwind for c in rows], dtype=f)
+        self._any_mrot = bool(self._mun.any())
+        self._sun = np.array([c.s_unwind for c in rows], dtype=f)
+        self._any_srot = bool(self._sun.any())
         self._peak = np.array([c.peak for c in rows], dtype=f)
         self._rd = np.array([c.ramp_dist for c in rows], dtype=f)
         self._rt = np.array([c.ramp_t for c in rows], dtype=f)
@@ -401,6 +419,10 @@ class PositionCamSet:
             cmd = self._cmd[sel]
             m = np.where(cmd, positions[1][master], positions[0][master])
             vm = np.where(cmd, velocities[1][master], velocities[0][master])
+        if self._any_mrot:  # a rotary master: its travel through the wrap, not its position
+            mu, mun = self._mu[sel], self._mun[sel]
+            m = np.where(mun > 0.0, mu + travel_array(m, mu, mun), m)
+            self._mu[sel] = m
         ms = self._ms[sel]
         x = ms * m + self._xoff[sel]  # MasterScaling * (master - m0) + MasterOffset
         following: np.ndarray | bool = True
@@ -451,6 +473,8 @@ class PositionCamSet:
             vel = vel - np.where(ramping, sign * qv, 0.0)
             acc = acc - np.where(ramping, sign * qa, 0.0)
         dpos = y - self._last[sel]
+        if self._any_srot:  # a rotary slave: the law's value counts modulo the unwind
+            dpos = travel_array(dpos, np.zeros_like(dpos), self._sun[sel])
         self._last[sel] = y
         self._v[sel] = vel
         self._a[sel] = acc
@@ -491,20 +515,28 @@ class PositionCamSet:
                 continue
             ref = 1 if c.reference == MasterReference.COMMAND else 0
             m = float(positions[ref][c.master])
-            prev, c.prev_master = c.prev_master, m
+            prev, u = c.prev_master, c.m_unwind
+            if prev is not None and u > 0.0:  # a rotary master: count travel through the wrap
+                m = prev + travel(m, prev, u)
+            c.prev_master = m
             assert c.lock is not None
             schedule, lp = c.lock
             if prev is None:
                 continue
-            fwd = prev < lp <= m
-            rev = prev > lp >= m
+            lp_fwd = lp_rev = lp
+            if u > 0.0:  # a rotary master passes the lock position once per revolution
+                lp_fwd = lp + u * math.floor((m - lp) / u)
+                lp_rev = lp + u * math.ceil((m - lp) / u)
+            fwd = prev < lp_fwd <= m
+            rev = prev > lp_rev >= m
             if (
                 (schedule == 2 and fwd)
                 or (schedule == 3 and rev)
                 or (schedule == 4 and (fwd or rev))
             ):
                 self.armed.remove(c)
-                place(c, lp, float(positions[1][c.slave]))
+                place(c, lp_fwd if fwd else lp_rev, float(positions[1][c.slave]))
+                c.mu = m  # the distance counts from the lock point, in the same frame
                 c.lock = None
                 self._started.append(c)
 
@@ -569,6 +601,7 @@ class PositionCamSet:
         new = self.pending.pop(c.slave)
         m_end, y_end = self._end_point(r, c, x_end, forward)
         place(new, m_end, y_end)
+        new.mu = float(self._mu[r])  # the master travel goes on in the same frame
         # the new cam takes over this update's position: its next step moves on from here
         y_now = float(self._last[r])
         new.last = y_now
@@ -622,6 +655,9 @@ class PositionCamSet:
         """A master counted from its coupling position keeps counting travel (MRP, MAH)."""
         self._sync_out()
         for c in self.rows:
+            if c.master == axis and c.m_unwind > 0.0:  # the unwrapped master moves with it
+                c.mu += delta
+                self._dirty = True
             if c.master == axis and not c.law.master_absolute:
                 c.m0 += delta
                 self._dirty = True
@@ -714,8 +750,11 @@ def place(c: Coupling, m: float, s: float) -> CamInError:
     y, _, _, _ = evaluate_law(law, m, c.m0, c.base, c.k0)
     c.last = s
     c.ramp_t = 0.0
-    if law.ramp and abs(s - float(y)) > 1e-12:
-        c.ramp_dist = s - float(y)
+    gap = slave_gap(law.start_mode, s - float(y), c.s_unwind)
+    if law.ramp and abs(gap) > 1e-12:
+        c.ramp_dist = gap
+        if c.s_unwind > 0.0:  # the slave where it is, modulo its unwind
+            c.last = float(y) + gap
         c.ramp_total = ramp_time(c.ramp_dist, law.velocity_diff, law.acceleration, law.deceleration)
         c.state = CouplingState.RAMPING
     else:
@@ -723,6 +762,22 @@ def place(c: Coupling, m: float, s: float) -> CamInError:
         c.ramp_total = 0.0
         c.state = CouplingState.IN_SYNC
     return CamInError.NONE
+
+
+def slave_gap(mode: CamStartMode, gap: float, unwind: float) -> float:
+    """The slave's position minus the law's, as the ramp-in removes it. On a linear slave as
+    it is; on a rotary one modulo the unwind: ramp_in_pos so that the slave compensates
+    forward only (the gap in (-unwind, 0]), ramp_in_neg in reverse only ([0, unwind)), the
+    other modes the short way round (the seed; decision 0137)."""
+    if unwind <= 0.0:
+        return gap
+    if mode == CamStartMode.RAMP_IN_POS:
+        ahead = wrap(-gap, unwind)  # forward distance to the law's position
+        return 0.0 if ahead > unwind - 1e-9 else -ahead
+    if mode == CamStartMode.RAMP_IN_NEG:
+        behind = wrap(gap, unwind)
+        return 0.0 if behind > unwind - 1e-9 else behind
+    return travel(gap, 0.0, unwind)
 
 
 def start_position_cam(
@@ -739,6 +794,7 @@ def start_position_cam(
     h = group.new_handle()
     ref = group.effective_reference(master, MasterReference(reference))
     c = Coupling(h, slave, master, ref, law)
+    c.m_unwind, c.s_unwind = float(group.unwind[master]), float(group.unwind[slave])
     err = validate_law(law)
     if err == CamInError.NONE and slave == master:
         err = CamInError.SAME_AXIS
@@ -759,6 +815,7 @@ def start_position_cam(
         pos = group.command_position if ref == MasterReference.COMMAND else group.actual_position
         vel = group.command_velocity if ref == MasterReference.COMMAND else group.actual_velocity
         err = place(c, float(pos[master]), float(group.command_position[slave]))
+        c.mu = float(pos[master])
         if err != CamInError.NONE:
             c.state, c.error = CouplingState.ERROR, err
             return
@@ -852,6 +909,7 @@ def start_mapc(
     h = group.new_handle()
     ref = group.effective_reference(master, MasterReference(reference))
     c = Coupling(h, slave, master, ref, law, mapc=True)
+    c.m_unwind, c.s_unwind = float(group.unwind[master]), float(group.unwind[slave])
     if pending:
 
         def apply_pending(ev: Events) -> None:
@@ -868,6 +926,7 @@ def start_mapc(
         pos = group.command_position if ref == MasterReference.COMMAND else group.actual_position
         if execution_schedule == PositionCamSchedule.IMMEDIATE:
             place(c, float(pos[master]), float(group.command_position[slave]))
+            c.mu = float(pos[master])
             cams.add(c)
         else:
             c.state = CouplingState.ARMED

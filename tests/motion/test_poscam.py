@@ -17,6 +17,7 @@ from interpreter.motion.poscam import (
     CamStartMode,
     CouplingState,
     ramp_time,
+    slave_gap,
     switch_table,
     validate_law,
 )
@@ -269,3 +270,120 @@ def test_one_cam_core_three_front_ends():
     # and the trajectory is the cam of the master (the end value 6 once past 20)
     assert t[-1, 0] == pytest.approx(6.0, abs=1e-12)
     assert c.state == CouplingState.ENDED
+
+
+# -- rotary axes (decision 0137) -------------------------------------------------------
+# P(x) = 2x over one turn [0, 360]: periodic and relative, each pass adds P(360) = 720, so
+# the slave is 2 * (the master's travel since coupling) however often the master wraps
+DOUBLE = calculate_cam_profile([0.0, 360.0], [0.0, 720.0], [0, 0])
+# P(x) = x on [0, 100]
+UNIT = calculate_cam_profile([0.0, 100.0], [0.0, 100.0], [0, 0])
+
+
+def rotary_setup(master_at: float, slave_rotary: bool = False) -> tuple[MotionGroup, int, int]:
+    g, m, s = setup(master_at=master_at)
+    g.set_unwind(m, 360.0)
+    if slave_rotary:
+        g.set_unwind(s, 360.0)
+    return g, m, s
+
+
+def test_rotary_master_travel_runs_through_the_wrap():
+    g, m, s = rotary_setup(300.0)
+    c = g.start_position_cam(s, m, CamLaw(DOUBLE, periodic=True, slave_absolute=False))
+    g.update()  # coupled at 300: X = 300 (master absolute), relative base 0
+    assert c.state == CouplingState.IN_SYNC
+    travel = 0.0
+    for step in (40.0, 40.0, 50.0, 170.0, 100.0, 100.0):  # wraps at 360 and at 720
+        travel += step
+        got = at(g, m, s, (300.0 + travel) % 360.0)
+        # relative law: slave = 0 + P(X mod 360) + 720 * passes = 2 * (300 + travel) (the
+        # relative start jumps by P(300) = 600, as the seed says)
+        assert got == pytest.approx(2.0 * (300.0 + travel), abs=1e-9), (travel, got)
+
+
+def test_rotary_master_redefined_keeps_counting_travel():
+    # master relative (MasterAbsolute FALSE): MRP on the master is no travel
+    law = CamLaw(DOUBLE, periodic=True, master_absolute=False, slave_absolute=False)
+    g, m, s = rotary_setup(350.0)
+    g.start_position_cam(s, m, law)
+    g.update()
+    assert at(g, m, s, 10.0) == pytest.approx(40.0, abs=1e-9)  # travel 20 through 0
+    g.shift_position(m, -200.0)  # the master now shows 170 (10 - 200 + 360)
+    assert float(g.command_position[m]) == pytest.approx(170.0)
+    assert at(g, m, s, 180.0) == pytest.approx(60.0, abs=1e-9)  # travel 20 + 10
+
+
+def test_mapc_reverse_lock_through_the_wrap():
+    # master at 20 moving back 10 per update; lock position 355 is crossed between 0 and
+    # 350 (unwound -5). From there x = CamLock 50 + (master travel from -5), slave = 7 +
+    # P(x) - P(50) = 7 + (x - 50)
+    g, m, s = rotary_setup(20.0)
+    g.set_position(s, 7.0)
+    r = g.start_mapc(s, m, UNIT, execution_schedule=3, master_lock_position=355.0,
+                     cam_lock_position=50.0, reference=1)  # fmt: skip
+    assert r.ok
+    g.update()  # armed at 20
+    for pos in (10.0, 0.0):
+        assert at(g, m, s, pos) == 7.0
+    assert at(g, m, s, 350.0) == 7.0  # locks here (at -5); the cam moves from the next update
+    for unwound in (-20.0, -30.0, -45.0):
+        x = 50.0 + (unwound - -5.0)
+        assert at(g, m, s, unwound % 360.0) == pytest.approx(7.0 + x - 50.0, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("mode", "slave", "law", "gap"),
+    [
+        # gap = slave - law as the ramp removes it; the slave moves by -gap
+        (CamStartMode.RAMP_IN_POS, 300.0, 20.0, -80.0),  # forward 300 -> 380
+        (CamStartMode.RAMP_IN_NEG, 300.0, 20.0, 280.0),  # back 300 -> 20
+        (CamStartMode.RAMP_IN, 300.0, 20.0, -80.0),  # the short way: forward
+        (CamStartMode.RAMP_IN_POS, 100.0, 20.0, -280.0),
+        (CamStartMode.RAMP_IN_NEG, 100.0, 20.0, 80.0),
+        (CamStartMode.RAMP_IN, 100.0, 20.0, 80.0),
+        (CamStartMode.RAMP_IN_POS, 20.0, 740.0, 0.0),  # already there modulo 360
+        (CamStartMode.RAMP_IN_NEG, 20.0, -340.0, 0.0),
+    ],
+)
+def test_ramp_in_direction_on_a_rotary_slave_core(mode, slave, law, gap):
+    assert slave_gap(mode, slave - law, 360.0) == pytest.approx(gap, abs=1e-9)
+    # a linear slave: the automatic direction, whatever the mode
+    assert slave_gap(mode, slave - law, 0.0) == slave - law
+
+
+def test_absolute_start_on_a_rotary_slave_lands_on_the_law_modulo_the_unwind():
+    # the law is 2 * 190 = 380 = 20 (mod 360); the slave at 350 jumps there (the short way
+    # round, +30) at the update after coupling
+    g, m, s = rotary_setup(190.0, slave_rotary=True)
+    g.set_position(s, 350.0)
+    g.start_position_cam(s, m, CamLaw(DOUBLE, periodic=True))
+    g.update()
+    before = float(g.command_position[s])
+    after = at(g, m, s, 190.0)
+    assert before == 350.0 and after == pytest.approx(20.0, abs=1e-9)
+
+
+def test_table_switch_on_a_rotary_master_as_on_a_linear_one():
+    # DOUBLE relative from master 300 (slave 0): slave = 2 U (U the unwound master; the
+    # start jumps by P(300) = 600). HALF (P = x over a turn) is selected at U = 340 and takes
+    # over at the pass end U = 360, slave 720 there: then slave = 720 + (U - 360), the
+    # update crossing the end still commanding the old law (U = 380: 760), the next one
+    # moving on from there (U = 400: 720 + 40 = 760, U = 420: 780, U = 800: 1160).
+    half = calculate_cam_profile([0.0, 360.0], [0.0, 360.0], [0, 0])
+    want = {340.0: 680.0, 380.0: 760.0, 400.0: 760.0, 420.0: 780.0, 800.0: 1160.0}
+    results = []
+    for rotary in (True, False):
+        g, m, s = rotary_setup(300.0) if rotary else setup(master_at=300.0)
+        c = g.start_position_cam(s, m, CamLaw(DOUBLE, periodic=True, slave_absolute=False))
+        g.update()
+        got = {}
+        for u in (340.0, 380.0, 400.0, 420.0, 500.0, 600.0, 700.0, 800.0):
+            got[u] = at(g, m, s, u % 360.0 if rotary else u)
+            if u == 340.0:
+                law = CamLaw(half, periodic=True, slave_absolute=False)
+                assert switch_table(g.position_cams, c, law) == CamInError.NONE
+        for u, y in want.items():
+            assert got[u] == pytest.approx(y, abs=1e-9), (rotary, u, got[u])
+        results.append(got)
+    assert all(abs(results[0][u] - results[1][u]) < 1e-9 for u in results[0])
