@@ -218,7 +218,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         ok = ctl.scan()
         if record:
             trace_rows.append(
-                [k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches]
+                [_seconds(k, args.scan_period)] + [_csv_value(g(), t) for _, g, t in watches]
             )
         if not ok:
             break
@@ -230,7 +230,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         _write_plot(args.plot, ctl, args.programs, watches, trace_rows)
     faults = ctl.faults()
     tags = {w: to_json_value(g(), t) for w, g, t in watches}
-    sim_time = ctl.scans * args.scan_period / 1000.0
+    sim_time = _seconds(ctl.scans, args.scan_period)
     if args.json:
         print(
             json.dumps(
@@ -271,6 +271,12 @@ def _unsupported(diags: list[Diagnostic]) -> list[dict[str, object]]:
     return out
 
 
+def _seconds(scans: int, scan_period_ms: float) -> float:
+    """Start time of scan `scans` in seconds (SPEC 9.1: k x scan period), without binary noise:
+    0.1 ms x 3 is reported as 0.0003, not 0.00030000000000000003 (nanosecond resolution)."""
+    return round(scans * scan_period_ms / 1000.0, 9)
+
+
 def _scan_count(duration: float | None, scan_period_ms: float) -> int:
     """Scans in `duration` simulated seconds; a duration so long that the count overflows is refused."""
     seconds = 1.0 if duration is None else duration
@@ -284,7 +290,13 @@ def _scan_count(duration: float | None, scan_period_ms: float) -> int:
 
 def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:
     if not exprs:
-        exprs = [t.qualified for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
+        # SPEC 3.3 counts STRING among the elementary types, so a STRING tag is listed too
+        exprs = [
+            t.qualified
+            for t in ctl.model.tags.values()
+            if isinstance(t.type, Elementary)
+            or (isinstance(t.type, StructType) and t.type.is_string)
+        ]
     from .runtime.controller import WatchError
 
     out = []
