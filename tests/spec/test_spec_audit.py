@@ -293,3 +293,37 @@ def test_watchdog_counts_straight_line_statements_too(st) -> None:
     assert bad.code == 3
     assert [(f["type"], f["code"], f["major"]) for f in bad.json["faults"]] == [(6, 1, True)]
     assert bad.json["scans"] == 1
+
+
+# ------------------------------------------------------------------ 2.1 initialisers
+def test_initial_values_that_do_not_fit_the_type_are_errors(st) -> None:
+    """SPEC 2.1: type mismatches in an initialiser are verification errors; a value that does
+    not fit the tag (Studio refuses `SINT := 300`) is one, a radix literal is a bit pattern
+    at the tag's width (`SINT := 16#FF` is -1, as an ST store of it)."""
+    src = (
+        "VAR b : BOOL := 2; s : SINT := 300; u : USINT := -1; h : SINT := 16#1FF;\n"
+        "ok1 : SINT := 16#FF; ok2 : DINT := -2147483648; ok3 : UDINT := 4294967295;\n"
+        "ok4 : BOOL := TRUE; ok5 : REAL := 1; t : TIMER := (PRE := 4294967296); END_VAR\n"
+        "ok2 := ok2;\n"
+    )
+    r = st.check(src)
+    assert r.code == 1
+    lines = src.splitlines()
+
+    def col(line: int, text: str) -> int:
+        return lines[line - 1].index(text) + 1
+
+    # each refused value where it is written; the TIMER's PRE (a DINT) is 2**32 > 2147483647
+    assert [(d["code"], d["line"], d["column"]) for d in r.json] == [
+        ("E116", 1, col(1, "2;")),
+        ("E116", 1, col(1, "300")),
+        ("E116", 1, col(1, "-1")),
+        ("E116", 1, col(1, "16#1FF")),
+        ("E116", 3, col(3, "4294967296")),
+    ]
+    fixed = src.replace("BOOL := 2", "BOOL := 1").replace("SINT := 300", "SINT := 127")
+    fixed = fixed.replace("USINT := -1", "USINT := 255").replace("16#1FF", "16#80")
+    r = st.run(fixed.replace("4294967296", "2147483647"), "b", "s", "u", "h", "ok1", "t.PRE")
+    assert r.code == 0, r.err
+    # 16#80 and 16#FF as SINT patterns: -128 and -1
+    assert r.tags == {"b": True, "s": 127, "u": 255, "h": -128, "ok1": -1, "t.PRE": 2147483647}
