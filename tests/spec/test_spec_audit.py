@@ -327,3 +327,28 @@ def test_initial_values_that_do_not_fit_the_type_are_errors(st) -> None:
     assert r.code == 0, r.err
     # 16#80 and 16#FF as SINT patterns: -128 and -1
     assert r.tags == {"b": True, "s": 127, "u": 255, "h": -128, "ok1": -1, "t.PRE": 2147483647}
+
+
+# ------------------------------------------------------------------ 7 syntax recovery
+def test_missing_semicolon_before_a_closer_is_reported_as_such(st) -> None:
+    """SPEC 7: syntax errors with recovery, several per file, precise ranges. A statement
+    missing its `;` before END_IF is a missing `;` at the END_IF (not a missing END_REPEAT:
+    there is no REPEAT), and the blocks after it parse normally."""
+    src = (
+        "VAR a : DINT; b : BOOL; END_VAR\n"
+        "a := ;\n"
+        "IF b THEN\n"
+        "  a := 2\n"
+        "END_IF;\n"
+        "WHILE b DO a := 1 END_WHILE;\n"
+        "a := 3;\n"
+    )
+    r = st.check(src)
+    assert r.code == 1
+    # line 2: the expression is missing where `;` stands (column 6); line 5: END_IF in
+    # column 1; line 6: END_WHILE after `a := 1 ` starts in column 19
+    assert [(d["code"], d["line"], d["column"], d["message"]) for d in r.json] == [
+        ("S001", 2, 6, "unexpected ';', expected an expression"),
+        ("S005", 5, 1, "expected ';' before 'END_IF'"),
+        ("S005", 6, 19, "expected ';' before 'END_WHILE'"),
+    ]
