@@ -808,8 +808,15 @@ class Checker(LadderChecks):
                 f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {given} given",
                 span,
             )
+            words = any(o.enum for o in ops)
             for e in args:
-                self.expr(e)
+                # with the operands miscounted, a bare word may be an enumeration text of a
+                # shifted operand: no "undefined tag" for it, the count error is the finding
+                if not words or not (
+                    isinstance(e, n.EnumText)
+                    or (isinstance(e, n.Name) and self.lookup(e.ident) is None)
+                ):
+                    self.expr(e)
             return
         rule = INSTRUCTION_CHECKS.get(ins.check) if ins.check else None
         if rule is not None and rule.operands:

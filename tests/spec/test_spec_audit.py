@@ -352,3 +352,26 @@ def test_missing_semicolon_before_a_closer_is_reported_as_such(st) -> None:
         ("S005", 5, 1, "expected ';' before 'END_IF'"),
         ("S005", 6, 19, "expected ';' before 'END_WHILE'"),
     ]
+
+
+def test_wrong_operand_count_is_one_diagnostic(st) -> None:
+    """SPEC 7: wrong operand count is reported; with the operands miscounted the enumeration
+    words (ST `%ofTime`, ladder `Units per sec`) are not also reported as undefined tags or
+    misplaced enumeration texts: one finding per mistake."""
+    head = "VAR X : AXIS_VIRTUAL; ctl : MOTION_INSTRUCTION; a : BOOL; END_VAR\n"
+    rll = (
+        "XIC(a) MAJ(X, ctl, 0, 10, Units per sec, 100, Units per sec2, 100, Units per sec2, "
+        "Trapezoidal, 100, 100, % of Time, 0, 0, 0);\n"
+    )
+    st_src = (
+        "IF a THEN MAJ(X, ctl, 0, 10, Unitspersec, 100, Unitspersec2, 100, Unitspersec2, "
+        "scurve, 100, 100, %ofTime, 0, 0, 0); END_IF;\n"
+    )
+    # MAJ has 17 operands (seed MAJ: Axis .. LockDirection); 16 are written in both forms,
+    # MAJ starting in column 8 of the rung and column 11 of the IF line
+    for name, body, column in (("m.rll", rll, 8), ("m.st", st_src, 11)):
+        r = st.check(head + body, name=name)
+        assert r.code == 1
+        assert [(d["code"], d["line"], d["column"], d["message"]) for d in r.json] == [
+            ("E104", 2, column, "MAJ takes 17 operands, 16 given")
+        ]
