@@ -10,6 +10,8 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+import pytest
+
 
 def _trace(st, src: str, name: str, scans: int, *watch: str, args: tuple[str, ...] = ()):  # type: ignore[no-untyped-def]
     """Run `src` with `--trace`; the CSV rows as lists of strings (header first)."""
@@ -375,3 +377,90 @@ def test_wrong_operand_count_is_one_diagnostic(st) -> None:
         assert [(d["code"], d["line"], d["column"], d["message"]) for d in r.json] == [
             ("E104", 2, column, "MAJ takes 17 operands, 16 given")
         ]
+
+
+def test_ladder_outputs_pass_the_condition_on_and_nested_branches_or(st) -> None:
+    """SPEC 3.2: outputs act on the rung condition and pass it on; a branch starts every leg
+    with the incoming condition and ORs the legs (nested too); a false rung skips ADD."""
+    src = """\
+VAR a : BOOL := TRUE; f : BOOL; o1, o2, o3, o4, o5 : BOOL; n : DINT; END_VAR
+XIC(a) OTE(o1) XIC(f) OTE(o2);
+[XIC(f) , XIC(a) [XIC(f) , XIO(f) OTE(o3)] ] OTE(o4);
+XIC(f) [OTE(o5), ADD(n, 1, n)];
+"""
+    r = st.run(src, "o1", "o2", "o3", "o4", "o5", "n", name="b.rll", scans=2)
+    assert r.code == 0, r.err
+    # rung 1: a TRUE -> o1 on; then f FALSE -> o2 off. rung 2: second leg: a TRUE, inner
+    # branch: XIO(f) TRUE -> o3 on, so the leg is TRUE and o4 on. rung 3: FALSE: o5 off, no ADD
+    assert r.tags == {"o1": True, "o2": False, "o3": True, "o4": True, "o5": False, "n": 0}
+
+
+def test_old_and_new_mnemonics_run_the_same(st) -> None:
+    """SPEC 2.2: both old and v36+ mnemonics EQU/EQ ... SQR/SQRT TRN/TRUNC XPY/EXPT ACS/ACOS
+    ASN/ASIN ATN/ATAN run."""
+    src = """\
+VAR a : DINT := 5; b : BOOL[7]; r : REAL[12]; END_VAR
+EQ(a,5) OTE(b[0]);
+NE(a,4) OTE(b[1]);
+GT(a,4) OTE(b[2]);
+GE(a,5) OTE(b[3]);
+LT(a,6) OTE(b[4]);
+LE(a,5) OTE(b[5]);
+LIMIT(0,a,10) OTE(b[6]);
+MOVE(2.0, r[0]);
+SQRT(16.0, r[1]);
+SQR(9.0, r[2]);
+TRUNC(2.7, r[3]);
+TRN(-2.7, r[4]);
+EXPT(2.0, 3.0, r[5]);
+XPY(2, 4, r[6]);
+ACOS(1.0, r[7]);
+ACS(0.0, r[8]);
+ASIN(1.0, r[9]);
+ASN(0.0, r[10]);
+ATN(0.0, r[11]);
+"""
+    r = st.run(src, "b", "r", name="m.rll")
+    assert r.code == 0, r.err
+    assert r.tags["b"] == [True] * 7  # 5 = 5, 5 <> 4, 5 > 4, 5 >= 5, 5 < 6, 5 <= 5, 0 <= 5 <= 10
+    half_pi = 1.5707963705062866  # pi/2 as float32
+    # sqrt 16 = 4, sqrt 9 = 3, trunc 2.7 = 2, trunc -2.7 = -2, 2^3 = 8, 2^4 = 16, acos 1 = 0,
+    # acos 0 = pi/2, asin 1 = pi/2, asin 0 = 0, atan 0 = 0
+    assert r.tags["r"] == [2.0, 4.0, 3.0, 2.0, -2.0, 8.0, 16.0, 0.0, half_pi, half_pi, 0.0, 0.0]
+
+
+def test_ladder_mov_rounds_ties_to_even_and_overflow_is_minor_4_4(st) -> None:
+    """SPEC 3.3: REAL -> integer rounds to nearest, ties to even, in instructions as in `:=`;
+    integers wrap (an overflowing store records minor fault 4/4 and goes on)."""
+    src = "VAR d1, d2, d3 : DINT; s : SINT; END_VAR\nMOV(2.5, d1);\nMOV(-2.5, d2);\nMOV(3.5, d3);\nMOV(200.0, s);\n"
+    r = st.run(src, "d1", "d2", "d3", "s", name="mv.rll")
+    assert r.code == 0
+    # 200 in a SINT wraps: 200 - 256 = -56
+    assert r.tags == {"d1": 2, "d2": -2, "d3": 4, "s": -56}
+    assert [(f["type"], f["code"], f["major"], f["line"]) for f in r.json["faults"]] == [
+        (4, 4, False, 5)
+    ]
+
+
+def test_planner_timing_with_a_declared_group(st) -> None:
+    """SPEC 9.3 / 2.1: a MOTION_GROUP's CoarseUpdatePeriod (µs) sets the planner period; a
+    move executed in the scan at t = 0 takes effect at the next update (t = CUP), its clock 0
+    there."""
+    src = """\
+VAR grp : MOTION_GROUP := (CoarseUpdatePeriod := 4000);
+    X : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+    ctl : MOTION_INSTRUCTION; go : BOOL := TRUE; END_VAR
+IF go THEN
+  MAJ(X, ctl, 0, 10.0, Unitspersec, 1000, Unitspersec2, 1000, Unitspersec2, Trapezoidal, 100, 100, %ofTime, 0, 0, 0, 0);
+  go := FALSE;
+END_IF;
+"""
+    r, rows = _trace(st, src, "g.st", 10, "X.CommandVelocity", "X.CommandPosition")
+    assert r.code == 0, r.err
+    # updates at 0, 4, 8 ms. The jog starts at the 4 ms update with its clock at 0 (v = 0);
+    # at 8 ms it has accelerated 4 ms at 1000: v = 4, x = 1000 * 0.004**2 / 2 = 0.008
+    v = [float(row[1]) for row in rows[1:]]
+    x = [float(row[2]) for row in rows[1:]]
+    assert v == [0.0] * 8 + [4.0, 4.0]
+    assert x[:8] == [0.0] * 8
+    assert x[8] == pytest.approx(0.008, rel=1e-6) and x[9] == x[8]
