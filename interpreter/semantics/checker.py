@@ -432,7 +432,7 @@ class Checker(LadderChecks):
         if number is None:
             self.err("E118", "an initial value must be a literal", _init_span(init))
         elif isinstance(t, Elementary) and (why := _out_of_range(init, number, t)) is not None:
-            self.err("E116", why, _init_span(init))
+            self.err("E118", why, _init_span(init))
 
     def cam_profile_init(self, init: n.ArrayInit, t: DataType) -> None:
         """CAM_PROFILE arrays are initialised with cam points (CAM form), calculated at load."""

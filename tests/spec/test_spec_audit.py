@@ -317,11 +317,11 @@ def test_initial_values_that_do_not_fit_the_type_are_errors(st) -> None:
 
     # each refused value where it is written; the TIMER's PRE (a DINT) is 2**32 > 2147483647
     assert [(d["code"], d["line"], d["column"]) for d in r.json] == [
-        ("E116", 1, col(1, "2;")),
-        ("E116", 1, col(1, "300")),
-        ("E116", 1, col(1, "-1")),
-        ("E116", 1, col(1, "16#1FF")),
-        ("E116", 3, col(3, "4294967296")),
+        ("E118", 1, col(1, "2;")),
+        ("E118", 1, col(1, "300")),
+        ("E118", 1, col(1, "-1")),
+        ("E118", 1, col(1, "16#1FF")),
+        ("E118", 3, col(3, "4294967296")),
     ]
     fixed = src.replace("BOOL := 2", "BOOL := 1").replace("SINT := 300", "SINT := 127")
     fixed = fixed.replace("USINT := -1", "USINT := 255").replace("16#1FF", "16#80")
