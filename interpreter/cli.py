@@ -315,7 +315,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         ok = ctl.scan()
         if record:
             trace_rows.append(
-                [k * args.scan_period / 1000.0] + [_csv_value(g(), t) for _, g, t in watches]
+                [_seconds(k, args.scan_period)] + [_csv_value(g(), t) for _, g, t in watches]
             )
         if not ok:
             break
@@ -327,7 +327,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         _write_plot(args.plot, ctl, args.programs, watches, trace_rows)
     faults = ctl.faults()
     tags = {w: _tag_json(g, t) for w, g, t in watches}
-    sim_time = ctl.scans * args.scan_period / 1000.0
+    sim_time = _seconds(ctl.scans, args.scan_period)
     if args.json:
         print(
             _json(
@@ -390,6 +390,12 @@ def _check_run_options(args: argparse.Namespace) -> None:
         )
 
 
+def _seconds(scans: int, scan_period_ms: float) -> float:
+    """Start time of scan `scans` in seconds (SPEC 9.1: k x scan period), without binary noise:
+    0.1 ms x 3 is reported as 0.0003, not 0.00030000000000000003 (nanosecond resolution)."""
+    return round(scans * scan_period_ms / 1000.0, 9)
+
+
 def _scan_count(duration: float | None, scan_period_ms: float) -> int:
     """Scans in `duration` simulated seconds, at most MAX_SCANS (docs/limits.md)."""
     seconds = 1.0 if duration is None else duration
@@ -422,7 +428,13 @@ def _same_file(a: Path, b: Path) -> bool:
 
 def _watches(ctl: Controller, exprs: list[str]) -> list[tuple[str, Callable[[], object], DataType]]:
     if not exprs:
-        exprs = [t.qualified for t in ctl.model.tags.values() if isinstance(t.type, Elementary)]
+        # SPEC 3.3 counts STRING among the elementary types, so a STRING tag is listed too
+        exprs = [
+            t.qualified
+            for t in ctl.model.tags.values()
+            if isinstance(t.type, Elementary)
+            or (isinstance(t.type, StructType) and t.type.is_string)
+        ]
     from .runtime.controller import WatchError
 
     out = []

@@ -201,6 +201,13 @@ class Controller:
             return False
         finally:
             self.scans += 1
+        if ctx.steps > ctx.budget:
+            # SPEC 9.4: any scan over the budget faults, also one with no loop (the loop heads
+            # check on the way, decision 0005; straight-line code is only counted here)
+            self.major_fault = self._fault(
+                6, 1, True, "task watchdog: the scan executed too many statements", -1
+            )
+            return False
         return True
 
     def _fault(

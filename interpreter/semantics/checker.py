@@ -35,6 +35,7 @@ from .types import (
     ArrayType,
     DataType,
     Elementary,
+    Kind,
     StructType,
     is_axis,
     is_unknown,
@@ -478,8 +479,11 @@ class Checker(LadderChecks):
         literal = init.operand if isinstance(init, n.Unary) else init
         if isinstance(literal, n.Literal):
             self.literal_limits(literal)
-        if const_number(init) is None:
+        number = const_number(init)
+        if number is None:
             self.err("E118", "an initial value must be a literal", _init_span(init))
+        elif isinstance(t, Elementary) and (why := _out_of_range(init, number, t)) is not None:
+            self.err("E118", why, _init_span(init))
 
     def cam_profile_init(self, init: n.ArrayInit, t: DataType) -> None:
         """CAM_PROFILE arrays are initialised with cam points (CAM form), calculated at load."""
@@ -914,8 +918,15 @@ class Checker(LadderChecks):
                 f"{ins.name} takes {expect} operand{'' if expect == '1' else 's'}, {given} given",
                 span,
             )
+            words = any(o.enum for o in ops)
             for e in args:
-                self.expr(e)
+                # with the operands miscounted, a bare word may be an enumeration text of a
+                # shifted operand: no "undefined tag" for it, the count error is the finding
+                if not words or not (
+                    isinstance(e, n.EnumText)
+                    or (isinstance(e, n.Name) and self.lookup(e.ident) is None)
+                ):
+                    self.expr(e)
             return
         rule = INSTRUCTION_CHECKS.get(ins.check) if ins.check else None
         if rule is not None and rule.operands:
@@ -1570,6 +1581,33 @@ def _text(e: object) -> str:
     if isinstance(e, n.Literal):
         return e.text
     return "?"
+
+
+def _out_of_range(init: object, value: int | float, t: Elementary) -> str | None:
+    """Why a literal initial value does not fit an elementary tag (None when it does).
+
+    Studio refuses `SINT := 300` or `BOOL := 2` rather than wrapping them (as `--set` does,
+    SPEC 9.12). A radix (or L5X ASCII) literal is a bit pattern read at the tag's width, so
+    `SINT := 16#FF` is -1; only a pattern wider than the tag is refused.
+    """
+    if t.kind is Kind.BOOL:
+        return None if value in (0, 1) else f"a BOOL starts as 0/1 or TRUE/FALSE, not {value}"
+    if not t.is_integer or isinstance(value, float) and value != value:
+        return None
+    if (
+        isinstance(init, n.Literal)
+        and ("#" in init.text or init.text.startswith("'"))
+        and isinstance(value, int)
+    ):  # a radix or L5X ASCII ('$FF') literal
+        # the lexer already reads a pattern of the literal's own width as signed (2#1...1 is -1)
+        width = 64 if init.type in ("LINT", "ULINT") else 32
+        ok = 0 <= value % (1 << width) < 1 << t.bits
+    else:
+        lo = -(1 << (t.bits - 1)) if t.signed else 0
+        hi = (1 << (t.bits - 1 if t.signed else t.bits)) - 1
+        ok = lo - 0.5 <= value < hi + 0.5 if isinstance(value, float) else lo <= value <= hi
+    shown = init.text if isinstance(init, n.Literal) else value
+    return None if ok else f"{shown} does not fit a {t.name}"
 
 
 def _init_span(init: object) -> n.Span:

@@ -407,6 +407,20 @@ class _Recovery:
         ):
             self.fatal = e
             return False
+        if (
+            tok.type in _CLOSERS
+            and "SEMI" in expected
+            and _find_open(ip.parser_state.value_stack, _CLOSERS[tok.type]) is not None
+        ):
+            # `x := 2 END_IF`: the statement before an open block's own closer lacks its `;`.
+            # (An expression state also "expects" END_REPEAT, from `UNTIL expr END_REPEAT`:
+            # that must not be taken for a missing END_REPEAT.)
+            self.diags.append(
+                diag("S005", f"expected ';' before {_describe(tok)}", self.path, _at(tok))
+            )
+            ip.feed_token(Token.new_borrow_pos("SEMI", ";", tok))
+            ip.feed_token(tok)
+            return True
         closers = [c for c in _CLOSERS if c in expected]
         if closers and (tok.type in _CLOSERS or tok.type in ("$END", "END_PROGRAM")):
             closer = closers[0]
