@@ -638,9 +638,9 @@ def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
                 if d.severity is Severity.WARNING
                 else "notice"
             )
+            # exactly the three properties SPEC 6 names; the code leads the message
             print(
-                f"::{kind} file={d.path},line={d.span.line},col={d.span.col},endLine={d.span.end_line},"
-                f"endColumn={d.span.end_col},title={d.code}::{d.message}"
+                f"::{kind} file={d.path},line={d.span.line},col={d.span.col}::{d.code} {d.message}"
             )
     elif fmt == "sarif":
         print(_json(_sarif(diags), indent=2))

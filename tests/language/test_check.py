@@ -214,10 +214,7 @@ def test_github_format(st) -> None:
     r = st.check(HEADER + "x := zz;\n", "github")
     assert r.code == 1
     p = str(st.tmp / "main.st")
-    assert (
-        r.out.strip()
-        == f"::error file={p},line=11,col=6,endLine=11,endColumn=8,title=E101::undefined tag 'zz'"
-    )
+    assert r.out.strip() == f"::error file={p},line=11,col=6::E101 undefined tag 'zz'"
 
 
 def test_github_warning(st) -> None:
