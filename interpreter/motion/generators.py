@@ -88,6 +88,7 @@ class ProfileGen:
         return EventKind.CONSTANT
 
 
+_ALL = slice(None)
 _FEW = 3  # up to this many time-driven rows are stepped on Python floats (_step_few)
 _PHASES = (EventKind.ACCEL, EventKind.DECEL, EventKind.CONSTANT)
 _PHASE_CODE = {None: -1, EventKind.ACCEL: 0, EventKind.DECEL: 1, EventKind.CONSTANT: 2}
@@ -198,6 +199,8 @@ class ProfileSet:
         self._base = np.arange(len(gens), dtype=np.intp) * width
         self._all_rows = np.arange(len(gens))
         self._few_seg: list[tuple[float, float, list[float]]] | None = None  # _step_few
+        self._seg_c = self._coef[:0]  # step: the segment rows of every row, kept until
+        self._next_start: np.ndarray | None = None  # a row reaches its next start (None)
         self._dirty = False
 
     # -- stepping -----------------------------------------------------------------
@@ -231,9 +234,15 @@ class ProfileSet:
         self._t[sel] = t
         if mvel is not None:  # a master backing up before the start holds the profile at 0
             t = np.maximum(t, 0.0)
-        # segment in use: the last one started at t (segment 0 starts at 0)
-        seg = (self._t0[sel] <= t[:, None]).sum(axis=1) - 1
-        c = self._coef[self._base[sel] + seg]
+        if mvel is None and isinstance(sel, slice):  # every row, all time driven
+            # the segments in use are kept until a row's clock reaches its next segment
+            # start: the clocks only count up, so no segment changes before then
+            nxt = self._next_start
+            if nxt is None or not (t < nxt).all():
+                self._seg_c, self._next_start = self._segments(t)
+            c = self._seg_c
+        else:
+            c = self._segments(t, sel)[0]
         d = t - c[:, 0]
         v0, a0, jj = c[:, 2], c[:, 3], c[:, 4]
         p = c[:, 1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
@@ -327,6 +336,16 @@ class ProfileSet:
         for g in done:
             self._on_end(g, EventKind.COMPLETE, events)
         return out
+
+    def _segments(
+        self, t: np.ndarray, sel: slice | np.ndarray = _ALL
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Per row: the coefficients of the segment in use at t (the last one started at
+        t; segment 0 starts at 0) and the next segment start after t (inf: none)."""
+        t0 = self._t0[sel]
+        later = t0 > t[:, None]
+        seg = (~later).sum(axis=1) - 1
+        return self._coef[self._base[sel] + seg], np.where(later, t0, np.inf).min(axis=1)
 
     def begin_update(self) -> None:
         pass

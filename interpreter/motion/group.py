@@ -157,6 +157,7 @@ class MotionGroup:
         self.actual_velocity = np.zeros(0)
         self.command_acceleration = np.zeros(0)
         self.servo_on = np.zeros(0, dtype=bool)
+        self._closed: bool | None = None  # every servo loop closed (None: not known)
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
         self.direct_drive = np.zeros(0, dtype=bool)  # MDO until MDF, MSO, MSF or a shutdown
         self.watch = WatchSet()  # MAW watch-position events
@@ -268,6 +269,7 @@ class MotionGroup:
         self.actual_velocity = np.append(self.actual_velocity, 0.0)
         self.command_acceleration = np.append(self.command_acceleration, 0.0)
         self.servo_on = np.append(self.servo_on, virtual)  # a virtual axis needs no MSO
+        self._closed = None  # update: are all loops closed? (asked again)
         self.shutdown = np.append(self.shutdown, False)
         self.direct_drive = np.append(self.direct_drive, False)
         self.virtual = np.append(self.virtual, virtual)
@@ -353,6 +355,7 @@ class MotionGroup:
         self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = True
+            self._closed = None  # update: are all loops closed? (asked again)
             # the loop closes at the current actual position: no jump
             self.command_position[axis] = self.actual_position[axis]
         return StartResult(handle=self.new_handle())
@@ -364,6 +367,7 @@ class MotionGroup:
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
+        self._closed = None  # update: are all loops closed? (asked again)
         self.before_update(lambda ev: self.kill_axis(axis, ev))
         return StartResult(handle=h)
 
@@ -375,6 +379,7 @@ class MotionGroup:
         self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = False
+            self._closed = None  # update: are all loops closed? (asked again)
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             self.kill_axis(axis, ev)
@@ -588,7 +593,10 @@ class MotionGroup:
             plan: list[tuple[LevelSel, np.ndarray | slice, np.ndarray]] = []
             for lv in range(self._max_level + 1):
                 rows = np.flatnonzero(level == lv)
-                plan.append(((level, lv), rows, self._alpha[rows]))
+                first, end = int(rows[0]), int(rows[-1]) + 1
+                # consecutive axes (a master, then its slaves): a slice, so views not copies
+                idx = slice(first, end) if end - first == len(rows) else rows
+                plan.append(((level, lv), idx, self._alpha[idx]))
             self._level_plan = plan
         self._levels_dirty = False
 
@@ -615,7 +623,9 @@ class MotionGroup:
         positions = (act, cmd)
         velocities = (avel, cvel)
         rot = len(self._rotary) > 0
-        closed = bool(self.servo_on.all())  # servo_on changes only between updates
+        closed = self._closed
+        if closed is None:  # servo_on changes only in the servo and shutdown calls
+            closed = self._closed = bool(self.servo_on.all())
         bincount = np.bincount
         for sel, idx, alpha in self._level_plan:
             parts = []

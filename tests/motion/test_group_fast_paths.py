@@ -1,9 +1,11 @@
 """The update's shortcuts compute exactly what the general path computes (decision 0138).
 
 A handful of time-driven moves, jogs and stops is stepped on Python floats
-(generators._step_few) instead of numpy arrays; IEEE doubles give the same bits either way,
-so the same requests run once through each path must give identical axis arrays and events
-at every update, through trapezoids, S-curves, a merge, a stop and a jog reversal.
+(generators._step_few) instead of numpy arrays, and the numpy path keeps the profile
+segments in use until a clock reaches the next segment start instead of searching them every
+update. IEEE doubles give the same bits either way, so the same requests run through each
+path must give identical axis arrays and events at every update, through trapezoids,
+S-curves, a merge, a stop and a jog reversal.
 """
 
 from __future__ import annotations
@@ -15,8 +17,18 @@ from interpreter.motion import MotionGroup, generators
 from interpreter.motion.generators import ProfileSet
 
 
-def _run(few: int, monkeypatch: pytest.MonkeyPatch) -> tuple[list[np.ndarray], list, int]:
+def _run(
+    few: int, monkeypatch: pytest.MonkeyPatch, search_always: bool = False
+) -> tuple[list[np.ndarray], list, int]:
     monkeypatch.setattr(generators, "_FEW", few)
+    if search_always:  # forget the kept segments before every step: searched every update
+        step = ProfileSet.step
+
+        def forgetful(self: ProfileSet, *args: object) -> object:
+            self._next_start = None
+            return step(self, *args)  # type: ignore[arg-type]
+
+        monkeypatch.setattr(ProfileSet, "step", forgetful)
     calls = 0
     step_few = ProfileSet._step_few
 
@@ -59,9 +71,11 @@ def _run(few: int, monkeypatch: pytest.MonkeyPatch) -> tuple[list[np.ndarray], l
 
 def test_few_generators_on_floats_match_the_numpy_path(monkeypatch: pytest.MonkeyPatch) -> None:
     fast, fast_events, fast_calls = _run(3, monkeypatch)
-    slow, slow_events, slow_calls = _run(0, monkeypatch)
-    assert fast_calls > 1000 and slow_calls == 0  # each run took the path it is meant to
-    assert fast_events == slow_events
+    kept, kept_events, kept_calls = _run(0, monkeypatch)
+    slow, slow_events, slow_calls = _run(0, monkeypatch, search_always=True)
+    assert fast_calls > 1000 and kept_calls == slow_calls == 0  # the paths meant
+    assert fast_events == kept_events == slow_events
     assert len(fast_events) > 10  # accel/decel/constant changes, completions
-    for k, (x, y) in enumerate(zip(fast, slow, strict=True)):
-        assert np.array_equal(x, y), f"update {k}"
+    for k, (x, y, z) in enumerate(zip(fast, kept, slow, strict=True)):
+        assert np.array_equal(x, z), f"update {k}: floats"
+        assert np.array_equal(y, z), f"update {k}: kept segments"
