@@ -75,7 +75,7 @@ from interpreter.motion.poscam import (
     start_mapc,
     start_position_cam,
 )
-from interpreter.motion.process import Ending, EndReason, LevelSel, ProcessSet
+from interpreter.motion.process import Ending, EndReason, LevelSel, MotionlessSet, ProcessSet
 from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -110,6 +110,11 @@ _VEL_EPS = 1e-9
 def _empty_code(code: CodeType) -> bool:
     ops = [(i.opname, i.argval) for i in dis.get_instructions(code) if i.opname != "RESUME"]
     return ops in ([("LOAD_CONST", None), ("RETURN_VALUE", None)], [("RETURN_CONST", None)])
+
+
+def _motionless(ps: ProcessSet) -> bool:
+    """Does the set keep MotionlessSet's step (it contributes nothing, ever)?"""
+    return getattr(type(ps), "step", None) is MotionlessSet.step
 
 
 def _empty(method: Callable[..., object]) -> bool:
@@ -158,6 +163,7 @@ class MotionGroup:
         self.command_acceleration = np.zeros(0)
         self.servo_on = np.zeros(0, dtype=bool)
         self._closed: bool | None = None  # every servo loop closed (None: not known)
+        self._servo_copied = False  # the status holds copies of servo_on and shutdown
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
         self.direct_drive = np.zeros(0, dtype=bool)  # MDO until MDF, MSO, MSF or a shutdown
         self.watch = WatchSet()  # MAW watch-position events
@@ -200,9 +206,10 @@ class MotionGroup:
             self.output_cams,
             self.paths,
         ]
-        # the bound per-update calls of the sets; begin/end hooks with an empty body (a set
-        # that needs none) are left out
-        self._steps = [ps.step for ps in self._sets]
+        # the bound per-update calls of the sets; the step of a set that moves no axis
+        # (MotionlessSet.step: no contribution) and begin/end hooks with an empty body are
+        # left out
+        self._steps = [ps.step for ps in self._sets if not _motionless(ps)]
         self._begin_hooks = [ps.begin_update for ps in self._sets if not _empty(ps.begin_update)]
         self._end_hooks = [ps.end_update for ps in self._sets if not _empty(ps.end_update)]
         self._status_calls = [ps.status for ps in self._sets]
@@ -269,7 +276,7 @@ class MotionGroup:
         self.actual_velocity = np.append(self.actual_velocity, 0.0)
         self.command_acceleration = np.append(self.command_acceleration, 0.0)
         self.servo_on = np.append(self.servo_on, virtual)  # a virtual axis needs no MSO
-        self._closed = None  # update: are all loops closed? (asked again)
+        self._servo_changed()
         self.shutdown = np.append(self.shutdown, False)
         self.direct_drive = np.append(self.direct_drive, False)
         self.virtual = np.append(self.virtual, virtual)
@@ -348,6 +355,12 @@ class MotionGroup:
         return h
 
     # -- servo -------------------------------------------------------------------------
+    def _servo_changed(self) -> None:
+        """servo_on or shutdown was written (they change only here, between updates): the
+        update asks again whether every loop is closed and copies them into the status."""
+        self._closed = None
+        self._servo_copied = False
+
     def servo_on_axis(self, axis: int) -> StartResult:
         """MSO: close the loop (no effect on a virtual axis); refused while shut down."""
         if self.shutdown[axis]:
@@ -355,7 +368,7 @@ class MotionGroup:
         self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = True
-            self._closed = None  # update: are all loops closed? (asked again)
+            self._servo_changed()
             # the loop closes at the current actual position: no jump
             self.command_position[axis] = self.actual_position[axis]
         return StartResult(handle=self.new_handle())
@@ -367,7 +380,7 @@ class MotionGroup:
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
-        self._closed = None  # update: are all loops closed? (asked again)
+        self._servo_changed()
         self.before_update(lambda ev: self.kill_axis(axis, ev))
         return StartResult(handle=h)
 
@@ -376,10 +389,11 @@ class MotionGroup:
         shutdown state (motion is refused with error 7) until reset_shutdown."""
         h = self.new_handle()
         self.shutdown[axis] = True
+        self._servo_changed()
         self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = False
-            self._closed = None  # update: are all loops closed? (asked again)
+            self._servo_changed()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             self.kill_axis(axis, ev)
@@ -391,6 +405,7 @@ class MotionGroup:
     def reset_shutdown(self, axis: int) -> StartResult:
         """MASR: leave the shutdown state; the loop stays open (a drive axis needs MSO)."""
         self.shutdown[axis] = False
+        self._servo_changed()
         return StartResult(handle=self.new_handle())
 
     def kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
@@ -656,6 +671,10 @@ class MotionGroup:
             if rot:
                 moved = travel_array(act, prev_actual, self.unwind)
                 avel[idx] = moved[idx] / cup
+            elif isinstance(idx, slice):  # views: the same operations, no temporaries
+                v = avel[idx]
+                np.subtract(act[idx], prev_actual[idx], out=v)
+                v /= cup
             else:
                 avel[idx] = (act[idx] - prev_actual[idx]) / cup
         if rot:
@@ -705,8 +724,10 @@ class MotionGroup:
             # unchanged, the merged members are already in st (only add_axis replaces them,
             # and it drops the merge)
             st.update(owned)
-        st["ServoActionStatus"] = self.servo_on.copy()
-        st["ShutdownStatus"] = self.shutdown.copy()
+        if not self._servo_copied:  # copied again only after a servo or shutdown change
+            st["ServoActionStatus"] = self.servo_on.copy()
+            st["ShutdownStatus"] = self.shutdown.copy()
+            self._servo_copied = True
         self._status_stale = True
 
     def _motion_bits(self) -> None:
