@@ -89,7 +89,7 @@ class ProfileGen:
 
 
 _ALL = slice(None)
-_FEW = 3  # up to this many time-driven rows are stepped on Python floats (_step_few)
+_FEW = 16  # up to this many time-driven rows are stepped on Python floats (_step_few)
 _PHASES = (EventKind.ACCEL, EventKind.DECEL, EventKind.CONSTANT)
 _PHASE_CODE = {None: -1, EventKind.ACCEL: 0, EventKind.DECEL: 1, EventKind.CONSTANT: 2}
 _KIND_STATUS = {
