@@ -665,7 +665,12 @@ class MotionGroup:
                 self._align_actual()
             if closed:  # every loop closed (always so for virtual axes): servo.servo_step
                 a0 = act[idx]
-                act[idx] = a0 + alpha * (cmd[idx] - a0)
+                if isinstance(idx, slice):  # a view: act + alpha * (cmd - act) in place
+                    d = cmd[idx] - a0
+                    d *= alpha
+                    a0 += d
+                else:
+                    act[idx] = a0 + alpha * (cmd[idx] - a0)
             else:
                 servo_step(cmd, act, self._alpha, self.servo_on, idx)
             if rot:
