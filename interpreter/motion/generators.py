@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -87,6 +88,8 @@ class ProfileGen:
         return EventKind.CONSTANT
 
 
+_ALL = slice(None)
+_FEW = 16  # up to this many time-driven rows are stepped on Python floats (_step_few)
 _PHASES = (EventKind.ACCEL, EventKind.DECEL, EventKind.CONSTANT)
 _PHASE_CODE = {None: -1, EventKind.ACCEL: 0, EventKind.DECEL: 1, EventKind.CONSTANT: 2}
 _KIND_STATUS = {
@@ -195,6 +198,9 @@ class ProfileSet:
         self._coef = coef
         self._base = np.arange(len(gens), dtype=np.intp) * width
         self._all_rows = np.arange(len(gens))
+        self._few_seg: list[tuple[float, float, list[float]]] | None = None  # _step_few
+        self._seg_c = self._coef[:0]  # step: the segment rows of every row, kept until
+        self._next_start: np.ndarray | None = None  # a row reaches its next start (None)
         self._dirty = False
 
     # -- stepping -----------------------------------------------------------------
@@ -217,6 +223,8 @@ class ProfileSet:
         if isinstance(sel, np.ndarray) and len(sel) == 0:
             return EMPTY
         self._fresh = False
+        if not self._md_rows and isinstance(sel, slice) and len(self._gens) <= _FEW:
+            return self._step_few(cup, events)
         self._n[sel] += self._timed[sel]  # a time-driven clock is counted updates (no drift)
         t = self._n[sel] * cup
         mvel: np.ndarray | None = None
@@ -226,9 +234,15 @@ class ProfileSet:
         self._t[sel] = t
         if mvel is not None:  # a master backing up before the start holds the profile at 0
             t = np.maximum(t, 0.0)
-        # segment in use: the last one started at t (segment 0 starts at 0)
-        seg = (self._t0[sel] <= t[:, None]).sum(axis=1) - 1
-        c = self._coef[self._base[sel] + seg]
+        if mvel is None and isinstance(sel, slice):  # every row, all time driven
+            # the segments in use are kept until a row's clock reaches its next segment
+            # start: the clocks only count up, so no segment changes before then
+            nxt = self._next_start
+            if nxt is None or not (t < nxt).all():
+                self._seg_c, self._next_start = self._segments(t)
+            c = self._seg_c
+        else:
+            c = self._segments(t, sel)[0]
         d = t - c[:, 0]
         v0, a0, jj = c[:, 2], c[:, 3], c[:, 4]
         p = c[:, 1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
@@ -267,6 +281,71 @@ class ProfileSet:
         for g in done:
             self._on_end(g, EventKind.COMPLETE, events)
         return out
+
+    def _step_few(self, cup: float, events: Events) -> Contribution:
+        """step() of every row when there are only a few, all time driven: the same
+        arithmetic, operation by operation, on Python floats (IEEE doubles as in numpy, so
+        the results are identical); numpy's cost per call would outweigh the work. The
+        segment in use is kept with the time the next one starts: the clock only counts
+        up, so it stays in use until then."""
+        seg_at = self._few_seg
+        if seg_at is None:  # after a rebuild: the rows as lists, no segment known yet
+            self._few_rows = (self._t0.tolist(), self._coef.tolist(), self._base.tolist())
+            seg_at = self._few_seg = [(math.inf, math.inf, [])] * len(self._gens)
+        t0s, coefs, bases = self._few_rows
+        n_arr, last_arr, phase_arr = self._n, self._last, self._phase
+        ends, durations = self._ends, self._duration
+        rows = len(self._gens)
+        dps, vels, accs = [0.0] * rows, [0.0] * rows, [0.0] * rows
+        done = self.done
+        for r in range(rows):
+            k = int(n_arr[r]) + 1
+            n_arr[r] = k
+            t = k * cup
+            self._t[r] = t
+            start, until, c = seg_at[r]
+            if not start <= t < until:  # the last segment started at t, and the next start
+                row = t0s[r]
+                seg = sum(1 for x in row if x <= t) - 1
+                until = min((x for x in row if x > t), default=math.inf)
+                c = coefs[bases[r] + seg]
+                seg_at[r] = (t, until, c)
+            d = t - c[0]
+            v0, a0, jj = c[2], c[3], c[4]
+            p = c[1] + d * (v0 + d * (a0 / 2.0 + d * jj / 6.0))
+            v = v0 + d * (a0 + d * jj / 2.0)
+            a = a0 + d * jj
+            self._vn[r] = v
+            self._v[r] = v
+            self._a[r] = a
+            dps[r] = p - float(last_arr[r])
+            last_arr[r] = p
+            vels[r], accs[r] = v, a
+            va = v * a
+            if va > 1e-12 or (abs(v) <= 1e-12 and abs(a) > 1e-12):
+                phase = 0
+            else:
+                phase = 1 if va < -1e-12 else 2
+            if phase != phase_arr[r]:
+                phase_arr[r] = phase
+                g = self._gens[r]
+                events.append((g.handle, _PHASES[phase], g.axis))
+            if ends[r] and t >= durations[r]:
+                done.append(self._gens[r])
+        out = Contribution(self._axis, np.array(dps), np.array(vels), np.array(accs))
+        for g in done:
+            self._on_end(g, EventKind.COMPLETE, events)
+        return out
+
+    def _segments(
+        self, t: np.ndarray, sel: slice | np.ndarray = _ALL
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Per row: the coefficients of the segment in use at t (the last one started at
+        t; segment 0 starts at 0) and the next segment start after t (inf: none)."""
+        t0 = self._t0[sel]
+        later = t0 > t[:, None]
+        seg = (~later).sum(axis=1) - 1
+        return self._coef[self._base[sel] + seg], np.where(later, t0, np.inf).min(axis=1)
 
     def begin_update(self) -> None:
         pass

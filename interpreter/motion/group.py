@@ -9,9 +9,13 @@ same instant and absolute targets are measured from the command position at that
 
 from __future__ import annotations
 
+import dis
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cache
+from operator import is_not
+from types import CodeType
 
 import numpy as np
 
@@ -71,7 +75,7 @@ from interpreter.motion.poscam import (
     start_mapc,
     start_position_cam,
 )
-from interpreter.motion.process import Ending, EndReason, ProcessSet
+from interpreter.motion.process import Ending, EndReason, LevelSel, MotionlessSet, ProcessSet
 from interpreter.motion.rotary import travel_array, wrap, wrap_array
 from interpreter.motion.servo import DEFAULT_TAU, lag_alpha, servo_step
 from interpreter.motion.timecam import TimeCamSet, start_time_cam
@@ -100,6 +104,24 @@ def _motion_status_bits() -> dict[str, int]:
 STATUS_BITS: dict[str, int] = _motion_status_bits()
 _STATUS_SHIFTS = np.array(list(STATUS_BITS.values()), dtype=np.uint32)
 _VEL_EPS = 1e-9
+
+
+@cache
+def _empty_code(code: CodeType) -> bool:
+    ops = [(i.opname, i.argval) for i in dis.get_instructions(code) if i.opname != "RESUME"]
+    return ops in ([("LOAD_CONST", None), ("RETURN_VALUE", None)], [("RETURN_CONST", None)])
+
+
+def _motionless(ps: ProcessSet) -> bool:
+    """Does the set keep MotionlessSet's step (it contributes nothing, ever)?"""
+    return getattr(type(ps), "step", None) is MotionlessSet.step
+
+
+def _empty(method: Callable[..., object]) -> bool:
+    """Is the bound method's body empty (`pass` or a docstring only)? The update leaves such
+    hooks out rather than calling them every update; any other body is called."""
+    code = getattr(getattr(method, "__func__", None), "__code__", None)
+    return code is not None and _empty_code(code)
 
 
 @dataclass(frozen=True, slots=True)
@@ -140,6 +162,8 @@ class MotionGroup:
         self.actual_velocity = np.zeros(0)
         self.command_acceleration = np.zeros(0)
         self.servo_on = np.zeros(0, dtype=bool)
+        self._closed: bool | None = None  # every servo loop closed (None: not known)
+        self._servo_copied = False  # the status holds copies of servo_on and shutdown
         self.shutdown = np.zeros(0, dtype=bool)  # MASD/MGSD until MASR/MGSR
         self.direct_drive = np.zeros(0, dtype=bool)  # MDO until MDF, MSO, MSF or a shutdown
         self.watch = WatchSet()  # MAW watch-position events
@@ -154,8 +178,7 @@ class MotionGroup:
         self._alpha = np.zeros(0)
         self._level = np.zeros(0, dtype=np.intp)
         self._max_level = 0
-        self._level_rows: list[np.ndarray] = []  # axes of each level (from _compute_levels)
-        self._levels_dirty = False
+        self._levels_dirty = True
         # AXIS status members per axis, computed when read after an update (`status`)
         self._status: dict[str, np.ndarray] = {}
         self._status_stale = False
@@ -183,6 +206,15 @@ class MotionGroup:
             self.output_cams,
             self.paths,
         ]
+        # the bound per-update calls of the sets; the step of a set that moves no axis
+        # (MotionlessSet.step: no contribution) and begin/end hooks with an empty body are
+        # left out
+        self._steps = [ps.step for ps in self._sets if not _motionless(ps)]
+        self._begin_hooks = [ps.begin_update for ps in self._sets if not _empty(ps.begin_update)]
+        self._end_hooks = [ps.end_update for ps in self._sets if not _empty(ps.end_update)]
+        self._status_calls = [ps.status for ps in self._sets]
+        # per level: (the sets' level selection, the level's axes, their servo alpha)
+        self._level_plan: list[tuple[LevelSel, np.ndarray | slice, np.ndarray]] = []
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
         self.shifted = False  # some shift is not 0 (spares resetting and testing the array)
         # the sets' status dicts of the latest update and their merge (kept while unchanged)
@@ -244,6 +276,7 @@ class MotionGroup:
         self.actual_velocity = np.append(self.actual_velocity, 0.0)
         self.command_acceleration = np.append(self.command_acceleration, 0.0)
         self.servo_on = np.append(self.servo_on, virtual)  # a virtual axis needs no MSO
+        self._servo_changed()
         self.shutdown = np.append(self.shutdown, False)
         self.direct_drive = np.append(self.direct_drive, False)
         self.virtual = np.append(self.virtual, virtual)
@@ -253,7 +286,8 @@ class MotionGroup:
         self.shift = np.append(self.shift, 0.0)
         self._level = np.append(self._level, 0)
         st = self.status
-        self._levels_dirty = True
+        self._levels_dirty = True  # also recomputes the level plan's servo alphas
+        self._owned = None  # the status arrays below replace the merged ones
         for name_ in STATUS_BITS:
             st[name_] = np.zeros(len(self.axes), dtype=bool)
         st["ServoActionStatus"] = self.servo_on.copy()
@@ -321,6 +355,12 @@ class MotionGroup:
         return h
 
     # -- servo -------------------------------------------------------------------------
+    def _servo_changed(self) -> None:
+        """servo_on or shutdown was written (they change only here, between updates): the
+        update asks again whether every loop is closed and copies them into the status."""
+        self._closed = None
+        self._servo_copied = False
+
     def servo_on_axis(self, axis: int) -> StartResult:
         """MSO: close the loop (no effect on a virtual axis); refused while shut down."""
         if self.shutdown[axis]:
@@ -328,6 +368,7 @@ class MotionGroup:
         self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = True
+            self._servo_changed()
             # the loop closes at the current actual position: no jump
             self.command_position[axis] = self.actual_position[axis]
         return StartResult(handle=self.new_handle())
@@ -339,6 +380,7 @@ class MotionGroup:
         if self.virtual[axis]:
             return StartResult(handle=h)
         self.servo_on[axis] = False
+        self._servo_changed()
         self.before_update(lambda ev: self.kill_axis(axis, ev))
         return StartResult(handle=h)
 
@@ -347,9 +389,11 @@ class MotionGroup:
         shutdown state (motion is refused with error 7) until reset_shutdown."""
         h = self.new_handle()
         self.shutdown[axis] = True
+        self._servo_changed()
         self.direct_drive[axis] = False
         if not self.virtual[axis]:
             self.servo_on[axis] = False
+            self._servo_changed()
 
         def apply(ev: list[tuple[int, EventKind, int]]) -> None:
             self.kill_axis(axis, ev)
@@ -361,6 +405,7 @@ class MotionGroup:
     def reset_shutdown(self, axis: int) -> StartResult:
         """MASR: leave the shutdown state; the loop stays open (a drive axis needs MSO)."""
         self.shutdown[axis] = False
+        self._servo_changed()
         return StartResult(handle=self.new_handle())
 
     def kill_axis(self, axis: int, ev: list[tuple[int, EventKind, int]]) -> None:
@@ -557,7 +602,17 @@ class MotionGroup:
                 break
         self._level = level
         self._max_level = int(level.max()) if n else 0
-        self._level_rows = [np.flatnonzero(level == lv) for lv in range(self._max_level + 1)]
+        if self._max_level == 0:  # one level: every axis, as views (no fancy indexing)
+            self._level_plan = [(None, slice(None), self._alpha)]
+        else:  # per level: the sets' selection, the axes of the level and their servo alpha
+            plan: list[tuple[LevelSel, np.ndarray | slice, np.ndarray]] = []
+            for lv in range(self._max_level + 1):
+                rows = np.flatnonzero(level == lv)
+                first, end = int(rows[0]), int(rows[-1]) + 1
+                # consecutive axes (a master, then its slaves): a slice, so views not copies
+                idx = slice(first, end) if end - first == len(rows) else rows
+                plan.append(((level, lv), idx, self._alpha[idx]))
+            self._level_plan = plan
         self._levels_dirty = False
 
     def update(self) -> list[MotionEvent]:
@@ -567,64 +622,83 @@ class MotionGroup:
         if self.shifted:
             self.shift[:] = 0.0
             self.shifted = False
-        pre, self._pre = self._pre, []
-        for f in pre:
-            f(ev)
+        if self._pre:
+            pre, self._pre = self._pre, []
+            for f in pre:
+                f(ev)
         if self._levels_dirty:
             self._compute_levels()
         n = len(self.axes)
         cup = self.cup
-        sets = self._sets
-        for ps in sets:
-            ps.begin_update()
-        prev_actual = self.actual_position.copy()
-        positions = (self.actual_position, self.command_position)
-        velocities = (self.actual_velocity, self.command_velocity)
-        single = self._max_level == 0
+        for begin in self._begin_hooks:
+            begin()
+        cmd, act = self.command_position, self.actual_position
+        cvel, cacc, avel = self.command_velocity, self.command_acceleration, self.actual_velocity
+        prev_actual = act.copy()
+        positions = (act, cmd)
+        velocities = (avel, cvel)
         rot = len(self._rotary) > 0
-        for lvl in range(self._max_level + 1):
-            sel = None if single else (self._level, lvl)
-            parts = [ps.step(cup, sel, positions, velocities, ev) for ps in sets]
-            parts = [c for c in parts if len(c.axis)]
-            idx: np.ndarray | slice = slice(None) if single else self._level_rows[lvl]
+        closed = self._closed
+        if closed is None:  # servo_on changes only in the servo and shutdown calls
+            closed = self._closed = bool(self.servo_on.all())
+        bincount = np.bincount
+        for sel, idx, alpha in self._level_plan:
+            parts = []
+            for step in self._steps:
+                c = step(cup, sel, positions, velocities, ev)
+                if len(c.axis):
+                    parts.append(c)
             if len(parts) == 1:  # one kind of motion at this level (e.g. only cams)
                 c = parts[0]
-                self.command_position += np.bincount(c.axis, c.dpos, n)
-                self.command_velocity[idx] = np.bincount(c.axis, c.vel, n)[idx]
-                self.command_acceleration[idx] = np.bincount(c.axis, c.acc, n)[idx]
+                cmd += bincount(c.axis, c.dpos, n)
+                cvel[idx] = bincount(c.axis, c.vel, n)[idx]
+                cacc[idx] = bincount(c.axis, c.acc, n)[idx]
             elif parts:
                 axes = np.concatenate([c.axis for c in parts])
-                dpos = np.bincount(axes, np.concatenate([c.dpos for c in parts]), n)
-                vel = np.bincount(axes, np.concatenate([c.vel for c in parts]), n)
-                acc = np.bincount(axes, np.concatenate([c.acc for c in parts]), n)
-                self.command_position += dpos
-                self.command_velocity[idx] = vel[idx]
-                self.command_acceleration[idx] = acc[idx]
+                cmd += bincount(axes, np.concatenate([c.dpos for c in parts]), n)
+                cvel[idx] = bincount(axes, np.concatenate([c.vel for c in parts]), n)[idx]
+                cacc[idx] = bincount(axes, np.concatenate([c.acc for c in parts]), n)[idx]
             else:
-                self.command_velocity[idx] = 0.0
-                self.command_acceleration[idx] = 0.0
+                cvel[idx] = 0.0
+                cacc[idx] = 0.0
             if rot:  # the servo follows the command the short way round the wrap
                 self._align_actual()
-            servo_step(self.command_position, self.actual_position, self._alpha, self.servo_on, idx)
-            if rot:
-                moved = travel_array(self.actual_position, prev_actual, self.unwind)
-                self.actual_velocity[idx] = moved[idx] / cup
+            if closed:  # every loop closed (always so for virtual axes): servo.servo_step
+                a0 = act[idx]
+                if isinstance(idx, slice):  # a view: act + alpha * (cmd - act) in place
+                    d = cmd[idx] - a0
+                    d *= alpha
+                    a0 += d
+                else:
+                    act[idx] = a0 + alpha * (cmd[idx] - a0)
             else:
-                self.actual_velocity[idx] = (self.actual_position[idx] - prev_actual[idx]) / cup
+                servo_step(cmd, act, self._alpha, self.servo_on, idx)
+            if rot:
+                moved = travel_array(act, prev_actual, self.unwind)
+                avel[idx] = moved[idx] / cup
+            elif isinstance(idx, slice):  # views: the same operations, no temporaries
+                v = avel[idx]
+                np.subtract(act[idx], prev_actual[idx], out=v)
+                v /= cup
+            else:
+                avel[idx] = (act[idx] - prev_actual[idx]) / cup
         if rot:
-            wrap_array(self.command_position, self.unwind, self._rotary)
-            wrap_array(self.actual_position, self.unwind, self._rotary)
-        for ps in sets:
-            ps.end_update(self.actual_position, ev)
-        post, self._post = self._post, []
-        for f in post:
-            f(ev)
-        if post:  # processes started at this update report their start velocity now
-            sums = [ps.velocity_sums(n) for ps in sets]
-            self.command_velocity[:] = np.sum([v_ for v_, _ in sums], axis=0)
-            self.command_acceleration[:] = np.sum([a_ for _, a_ in sums], axis=0)
+            wrap_array(cmd, self.unwind, self._rotary)
+            wrap_array(act, self.unwind, self._rotary)
+        for end in self._end_hooks:
+            end(act, ev)
+        if self._post:
+            post, self._post = self._post, []
+            for f in post:
+                f(ev)
+            # processes started at this update report their start velocity now
+            sums = [ps.velocity_sums(n) for ps in self._sets]
+            cvel[:] = np.sum([v_ for v_, _ in sums], axis=0)
+            cacc[:] = np.sum([a_ for _, a_ in sums], axis=0)
         self.updates += 1
         self._update_status()
+        if not ev:
+            return []
         return [MotionEvent(h, k, a) for h, k, a in ev]
 
     def _align_actual(self) -> None:
@@ -641,9 +715,9 @@ class MotionGroup:
         velocity bits follow when read (`status`)."""
         n = len(self.axes)
         st = self._status
-        parts = [ps.status(n) for ps in self._sets]
+        parts = [f(n) for f in self._status_calls]
         cached = self._owned
-        if cached is None or any(p is not q for p, q in zip(parts, cached[0], strict=True)):
+        if cached is None or any(map(is_not, parts, cached[0])):
             # the sets hand out the same dict while their status is unchanged (its arrays
             # read-only); a member two kinds set (CoordinatedMotionStatus) is their OR
             owned: dict[str, np.ndarray] = {}
@@ -651,10 +725,14 @@ class MotionGroup:
                 for name, arr in part.items():
                     prev = owned.get(name)
                     owned[name] = arr if prev is None else prev | arr
-            cached = self._owned = (parts, owned)
-        st.update(cached[1])
-        st["ServoActionStatus"] = self.servo_on.copy()
-        st["ShutdownStatus"] = self.shutdown.copy()
+            self._owned = (parts, owned)
+            # unchanged, the merged members are already in st (only add_axis replaces them,
+            # and it drops the merge)
+            st.update(owned)
+        if not self._servo_copied:  # copied again only after a servo or shutdown change
+            st["ServoActionStatus"] = self.servo_on.copy()
+            st["ShutdownStatus"] = self.shutdown.copy()
+            self._servo_copied = True
         self._status_stale = True
 
     def _motion_bits(self) -> None:

@@ -54,12 +54,35 @@ _NO_STATUS: dict[str, np.ndarray] = {}
 EMPTY = Contribution(np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0))
 
 
+_ALL = slice(None)
+_NO_ROWS = np.zeros(0, dtype=np.intp)
+# rows_at_level answers by row-axis array: (that array, the level array it was computed
+# for, rows per level). The arrays are held, so their ids are not reused while cached;
+# the sets and the group build new arrays when rows or levels change, never edit them.
+_LEVEL_ROWS: dict[int, tuple[np.ndarray, np.ndarray, dict[int, slice | np.ndarray]]] = {}
+
+
 def rows_at_level(level_sel: LevelSel, row_axes: np.ndarray) -> slice | np.ndarray:
     """The rows of a set to step now: every row (a slice: views, no copies) or the rows whose
-    axis has the selected level (masters are stepped before their slaves)."""
+    axis has the selected level (masters are stepped before their slaves); no row: an empty
+    array. The answer is kept while the set's row-axis array and the group's level array
+    are the same objects (the group asks every set at every level of every update)."""
     if level_sel is None:
-        return slice(None)
-    return np.flatnonzero(level_sel[0][row_axes] == level_sel[1])
+        return _ALL
+    levels, lvl = level_sel
+    hit = _LEVEL_ROWS.get(id(row_axes))
+    if hit is None or hit[0] is not row_axes or hit[1] is not levels:
+        if len(_LEVEL_ROWS) >= 256:  # arrays of sets rebuilt since: let them go
+            _LEVEL_ROWS.clear()
+        hit = (row_axes, levels, {})
+        _LEVEL_ROWS[id(row_axes)] = hit
+    by_level = hit[2]
+    rows = by_level.get(lvl)
+    if rows is None:
+        found = np.flatnonzero(levels[row_axes] == lvl)
+        n = len(found)
+        rows = by_level[lvl] = _NO_ROWS if n == 0 else _ALL if n == len(row_axes) else found
+    return rows
 
 
 class ProcessSet(Protocol):

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, is_dataclass
 from functools import cache
 from typing import Protocol
 
@@ -19,7 +19,6 @@ import numpy as np
 
 from ..motion import STATUS_BITS, AxisKind, CamProfile, EventKind, MotionEvent, MotionGroup
 from ..motion.rotary import travel_array
-from ..semantics.locate import walk
 from ..semantics.program import ProgramModel
 from ..semantics.types import ArrayType, StructType, is_axis
 from ..syntax import nodes as n
@@ -602,17 +601,49 @@ def watched_members(expr: n.Expr, t: object) -> frozenset[str] | None:
 
 
 def _collect_words(node: object, out: set[str]) -> None:
-    """Identifiers, member names and words (GSV attribute names ...) anywhere below a node."""
-    for x in walk(node):
+    """Identifiers, member names and words (GSV attribute names ...) anywhere below a node.
+
+    The nodes semantics.locate.walk visits, walked here with each node type's field names
+    looked up once: a program with large initialised arrays has tens of thousands of nodes
+    and this runs before the first scan."""
+    stack = [node]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, list | tuple):
+            stack.extend(x)
+            continue
+        cls = type(x)
+        names = _NODE_FIELDS[cls] if cls in _NODE_FIELDS else _node_fields(cls)
+        if names is None:  # not an AST node (walk skips it too)
+            continue
         if isinstance(x, n.Member):
             out.add(x.name.upper())
+            words = False
         elif isinstance(x, n.Name):
             out.add(x.ident.upper().rsplit(".", 1)[-1])
+            words = False
         else:
-            for f in fields(x):  # type: ignore[arg-type]
-                value = getattr(x, f.name)
-                if isinstance(value, str):
+            words = True
+        for name in names:
+            value = getattr(x, name)
+            if isinstance(value, str):
+                if words:
                     out.add(value.upper())
+            elif isinstance(value, list | tuple) or is_dataclass(value):
+                stack.append(value)
+
+
+_NODE_FIELDS: dict[type, tuple[str, ...] | None] = {}
+
+
+def _node_fields(cls: type) -> tuple[str, ...] | None:
+    """Field names of a dataclass node type but its span (None: not a dataclass, or a class
+    object itself, which walk does not visit); kept in _NODE_FIELDS."""
+    names = None
+    if is_dataclass(cls) and not issubclass(cls, type):
+        names = tuple(f.name for f in fields(cls) if f.name != "span")
+    _NODE_FIELDS[cls] = names
+    return names
 
 
 def _on_circle(pos: np.ndarray, unwind: np.ndarray) -> np.ndarray:
