@@ -83,15 +83,9 @@ class _Blocks:
     camins: dict[int, _CamInState] = field(default_factory=dict)
 
 
-_last: list = [None, None]  # (runtime, its blocks): every call of a scan asks for the same
-
-
-def _blocks_of(ctx: ExecContext) -> _Blocks:
-    """The blocks of the context's runtime; the common case is one identity comparison."""
-    rt = ctx.motion
-    if _last[0] is rt:
-        return _last[1]  # type: ignore[no-any-return]
-    return _blocks(runtime(ctx))
+# (runtime, its blocks): every call of a scan asks for the same, so the block functions
+# compare ctx.motion with _last[0] in line before calling _blocks
+_last: list = [None, None]
 
 
 def _blocks(rt: MotionRuntime) -> _Blocks:
@@ -139,7 +133,7 @@ def _table_profile(table: object) -> CamProfile | CamInError:
 
 @implements("MC_CamTableSelect")
 def mc_cam_table_select(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
-    b = _blocks_of(ctx)
+    b = _last[1] if _last[0] is ctx.motion else _blocks(runtime(ctx))  # see _blocks
     key = id(inst)
     if inst[_SEL_EXECUTE] and b.selects.get(key, False):
         return  # outputs stay as they are while Execute stays TRUE
@@ -217,7 +211,7 @@ def _start(rt: MotionRuntime, b: _Blocks, st: _CamInState, inst: list, refs: dic
 
 @implements("MC_CamIn")
 def mc_cam_in(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
-    b = _blocks_of(ctx)
+    b = _last[1] if _last[0] is ctx.motion else _blocks(runtime(ctx))  # see _blocks
     st = b.camins.get(id(inst))
     if st is not None and st.steady and inst[_CIN_EXECUTE] and inst[_CIN_TABLE] == st.table:
         c = st.coupling
