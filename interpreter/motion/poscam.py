@@ -386,6 +386,14 @@ class PositionCamSet:
         self._all_periodic = bool(self._periodic.all())
         self._no_row = np.zeros(len(rows), dtype=bool)
         self._any_padd = bool(self._padd.any())
+        # the common couplings (_step_plain): command masters, periodic, no direction,
+        # rotary, persistent or MAPC handling (a ramp is checked at each step: it ends)
+        self._plain = (
+            self._all_cmd
+            and self._all_periodic
+            and not (self._any_mrot or self._any_mdir or self._any_srot)
+            and not (self._mapc_rows or self._any_persist)
+        )
         self._levels: np.ndarray | None = None  # the rows of each level: see _select
         self._dirty = False
 
@@ -411,6 +419,8 @@ class PositionCamSet:
         sel = self._select(level_sel)
         if sel is None:
             return EMPTY
+        if self._plain and not self._any_ramp and sel.__class__ is slice:
+            return self._step_plain(positions, velocities, events)
         master = self._master[sel]
         if self._all_cmd:  # the usual case: every master followed by command position
             m = positions[1][master]
@@ -489,6 +499,47 @@ class PositionCamSet:
             self._k[sel] = k
             self._events(sel, outside, passed, prev_k, k, x, m, events)
         return Contribution(self._slave[sel], dpos, vel, acc)
+
+    def _step_plain(
+        self, positions: AxisState, velocities: AxisState, events: Events
+    ) -> Contribution:
+        """step() for every row when all are plain (see _rebuild) and none ramps: the same
+        arithmetic in the same order on the whole arrays, without the per-row selections
+        and the branches (about 5 of the 15 us of 32 couplings)."""
+        master = self._master
+        m = positions[1][master]
+        vm = velocities[1][master]
+        ms = self._ms
+        x = ms * m + self._xoff  # MasterScaling * (master - m0) + MasterOffset
+        start, span = self._start, self._span
+        d = x - start
+        k = np.floor(d / span)
+        local = d - k * span  # 0..span
+        np.maximum(local, 0.0, out=local)
+        np.minimum(local, span, out=local)
+        assert self._bank is not None
+        p, dp, ddp = self._bank.evaluate_rows(
+            self._row_base, self._row_first, self._row_last, local
+        )
+        ss = self._ss
+        y = ss * p + self._base
+        if self._any_padd:
+            y += (k - self._k0) * self._padd
+        mv = ms * vm
+        vel = ss * dp * mv
+        acc = ss * ddp * mv * mv
+        last = self._last
+        dpos = y - last
+        last[:] = y
+        self._v[:] = vel
+        self._a[:] = acc
+        prev_k = self._k
+        passed = k != prev_k
+        if passed.any():  # a profile end passed: no cam here leaves its range (all periodic)
+            prev_k = prev_k.copy()
+            self._k[:] = k
+            self._events(slice(None), self._no_row, passed, prev_k, k, x, m, events)
+        return Contribution(self._slave, dpos, vel, acc)
 
     def _select(self, level_sel: LevelSel) -> slice | np.ndarray | None:
         """The rows to step at this level (None: none); the answer per level is kept while
