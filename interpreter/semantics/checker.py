@@ -1116,6 +1116,8 @@ class Checker(LadderChecks):
         if fmt == "routine":
             if not isinstance(e, n.Name):
                 self.err("E124", "JSR needs a routine name", e.span)
+            elif self.aoi is not None:  # its logic has no routines to call (no real AOI does)
+                self.err("E124", "an add-on instruction cannot call a routine", e.span)
             elif self.model.routine(e.ident, self.scope) is None:
                 names = [
                     r.name
