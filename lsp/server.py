@@ -74,6 +74,7 @@ class LogixServer(LanguageServer):
         )
         self.docs = Workspace()
         self.pending: dict[str, asyncio.TimerHandle] = {}
+        self.refusals: dict[str, str] = {}  # uri -> the reason told for not analysing it
 
     def log(self, message: str, kind: t.MessageType = t.MessageType.Log) -> None:
         try:
@@ -103,7 +104,9 @@ class LogixServer(LanguageServer):
                 self.text_document_publish_diagnostics(
                     t.PublishDiagnosticsParams(uri=uri, diagnostics=[], version=doc.version)
                 )
+                self.tell_refusal(uri)
             return
+        self.refusals.pop(uri, None)
         diags = []
         for d in an.diagnostics:
             e = to_editor(d)
@@ -122,6 +125,14 @@ class LogixServer(LanguageServer):
         self.text_document_publish_diagnostics(
             t.PublishDiagnosticsParams(uri=uri, diagnostics=diags, version=an.document.version)
         )
+
+    def tell_refusal(self, uri: str) -> None:
+        """Say once (until the reason changes) why a document gets no analysis, as `check`
+        would refuse the file: a limit is enforced with a message (docs/limits.md)."""
+        why = self.docs.refused(uri)
+        if why is not None and self.refusals.get(uri) != why:
+            self.refusals[uri] = why
+            self.window_show_message(t.ShowMessageParams(t.MessageType.Warning, why))
 
     def schedule(self, uri: str) -> None:
         old = self.pending.pop(uri, None)
@@ -309,6 +320,7 @@ def did_close(ls: LogixServer, params: t.DidCloseTextDocumentParams) -> None:
     if handle is not None:
         handle.cancel()
     ls.docs.close(uri)
+    ls.refusals.pop(uri, None)
     ls.text_document_publish_diagnostics(t.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 from interpreter.diagnostics import Diagnostic
-from interpreter.limits import MAX_PROJECT_BYTES, MAX_SOURCE_BYTES, LimitError, read_limited
+from interpreter.limits import MAX_PROJECT_BYTES, MAX_SOURCE_BYTES, LimitError, mb, read_limited
 from interpreter.semantics.document import (
     PROGRAM_SUFFIXES,
     PROJECT_SUFFIXES,
@@ -109,13 +109,24 @@ class Workspace:
     def get(self, uri: str) -> Document | None:
         return self.documents.get(uri)
 
-    def analyse(self, uri: str) -> Analysed | None:
-        """The analysis of an open document (cached while nothing it reads has changed)."""
+    def refused(self, uri: str) -> str | None:
+        """Why `check` would refuse this open document as an input file (too large for its
+        kind, or not text), in the CLI's words; None when it is analysed."""
         doc = self.documents.get(uri)
         if doc is None or doc.language is None:
             return None
         limit = MAX_PROJECT_BYTES if doc.language == "l5x" else MAX_SOURCE_BYTES  # as the CLI
-        if len(doc.text) > limit or looks_binary(doc.text[:8192].encode()):
+        size = len(doc.text.encode("utf-8", "surrogatepass"))
+        if size > limit:
+            return f"{doc.path}: file is too large ({size:,} bytes; the limit is {mb(limit)}): not analysed"
+        if looks_binary(doc.text[:8192].encode("utf-8", "surrogatepass")):
+            return f"{doc.path}: not a text file (it holds NUL bytes): not analysed"
+        return None
+
+    def analyse(self, uri: str) -> Analysed | None:
+        """The analysis of an open document (cached while nothing it reads has changed)."""
+        doc = self.documents.get(uri)
+        if doc is None or doc.language is None or self.refused(uri) is not None:
             return None  # `check` refuses such a file as input: nothing to verify
         sources = self._program_sources(doc) if doc.language != "l5x" else []
         key: tuple[object, ...] = (doc.text, self.tags_path, tuple(sources))

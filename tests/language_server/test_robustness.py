@@ -100,7 +100,31 @@ async def test_nul_makes_a_document_binary(client: LanguageClient, tmp_path: Pat
     path.write_text(text)
     capsys.readouterr()
     assert main(["check", str(path)]) == 2
+    client.messages.clear()
     uri = await open_doc(client, path, text)
     assert list(client.diagnostics[uri]) == []
+    # the editor is told why, once, in the CLI's words
+    told = [m.message for m in client.messages if m.type == t.MessageType.Warning]
+    assert told == [f"{path}: not a text file (it holds NUL bytes): not analysed"]
     doc = t.TextDocumentIdentifier(uri)
     assert await client.text_document_hover_async(t.HoverParams(doc, t.Position(1, 0))) is None
+
+
+async def test_a_document_over_the_size_limit_is_refused_with_a_message(
+    client: LanguageClient, tmp_path: Path
+) -> None:  # type: ignore[no-untyped-def]
+    # `check` refuses a .st file over 1 MB (docs/limits.md); the server analyses nothing and
+    # says why once, then answers requests as usual
+    text = "VAR x : DINT; END_VAR\n" + "// filler line of comment text\n" * 40_000  # 1.24 MB
+    path = tmp_path / "big.st"
+    client.messages.clear()
+    uri = await open_doc(client, path, text)
+    assert list(client.diagnostics[uri]) == []
+    size = len(text.encode())
+    told = [m.message for m in client.messages if m.type == t.MessageType.Warning]
+    assert told == [
+        f"{path.resolve()}: file is too large ({size:,} bytes; the limit is 1 MB): not analysed"
+    ]
+    doc = t.TextDocumentIdentifier(uri)
+    assert await client.text_document_hover_async(t.HoverParams(doc, t.Position(0, 4))) is None
+    client.text_document_did_close(t.DidCloseTextDocumentParams(doc))
