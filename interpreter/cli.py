@@ -213,7 +213,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def cmd_lsp(args: argparse.Namespace) -> int:
     if args.tcp is not None:
         host, sep, port = args.tcp.rpartition(":")
-        if not sep or not port.isdigit() or not 0 < int(port) < 65536:
+        if not sep or not port.isdecimal() or not 0 < int(port) < 65536:
             raise UsageError(f"--tcp expects HOST:PORT, got '{args.tcp}'")
     from lsp.server import run
 

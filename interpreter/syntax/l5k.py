@@ -427,7 +427,7 @@ class _Reader:
         if close < 0:
             raise _Bad("'[' of the array dimensions is not closed", self.i)
         parts = [p.strip() for p in self.t[self.i + 1 : close].split(",")]
-        if not all(p.isdigit() for p in parts):
+        if not all(p.isdecimal() for p in parts):
             raise _Bad("array dimensions must be whole numbers", self.i)
         self.i = close + 1
         dims = tuple(int(p) for p in parts)
@@ -451,7 +451,7 @@ class _Reader:
         label = attrs["PORTLABEL"].text.upper() if "PORTLABEL" in attrs else ""
         networked = bool(node) and "BACKPLANE" not in label
         prefix = name
-        if slot.isdigit() and parent and parent != name and not networked:
+        if slot.isdecimal() and parent and parent != name and not networked:
             prefix = f"{parent}:{int(slot)}"
         self.project.modules[prefix.upper()] = name
         self.module_data(prefix, body, self.i)
@@ -520,7 +520,7 @@ class _Reader:
             if not mname or not mtype:
                 return ""
             dim, bit = e.get("Dimension").strip() or "0", e.get("BitNumber").strip() or "0"
-            if not dim.isdigit() or not bit.isdigit():
+            if not dim.isdecimal() or not bit.isdecimal():
                 return ""  # not a layout we can read: the module stays without its I/O tags
             dims = int(dim)
             hidden = e.get("Hidden").lower() in ("1", "true")

@@ -364,7 +364,7 @@ class _Reader:
                 continue
             dims = _dims(m.get("Dimension"))
             hidden = m.get("Hidden").lower() == "true"
-            bit = int(m.get("BitNumber") or 0) if m.get("BitNumber").isdigit() else 0
+            bit = int(m.get("BitNumber") or 0) if m.get("BitNumber").isdecimal() else 0
             raw.append(
                 RawMember(
                     mname, dtype.upper(), dims[0] if dims else 0, hidden, m.get("Target"), bit
@@ -636,7 +636,7 @@ class _Reader:
         for i, le in enumerate(lines):
             text = le.text
             number = le.get("Number")
-            st_line = int(number) if number.isdigit() else i
+            st_line = int(number) if number.isdecimal() else i
             if le.text_offset >= 0:
                 fl, fc = self.pos.at(le.text_offset)
             else:
@@ -676,7 +676,7 @@ class _Reader:
             if re_.get("Type").upper().startswith("D"):
                 continue  # a rung marked for deletion by pending edits
             number_text = re_.get("Number")
-            number = int(number_text) if number_text.isdigit() else i
+            number = int(number_text) if number_text.isdecimal() else i
             text_e = re_.child("Text")
             if text_e is None:
                 self.err("S007", f"rung {number} of {where} has no <Text>", self.span(re_))

@@ -69,7 +69,7 @@ class ModuleReader:
             addr = p.get("Address").strip()
             if (
                 p.get("Type").strip().upper() not in NETWORK_PORTS
-                and addr.isdigit()
+                and addr.isdecimal()
                 and parent
                 and parent != name
             ):

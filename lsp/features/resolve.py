@@ -83,7 +83,7 @@ def type_of_operand(model: ProgramModel, text: str, program: str | None) -> Data
         elif isinstance(t, StructType):
             m = t.member(part)
             t = m[1] if m is not None else None
-        elif isinstance(t, Elementary) and part.isdigit():
+        elif isinstance(t, Elementary) and part.isdecimal():
             from interpreter.semantics.types import BOOL
 
             t = BOOL

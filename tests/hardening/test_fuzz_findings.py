@@ -29,3 +29,17 @@ def test_jsr_inside_an_add_on_instruction_is_a_verification_error(tmp_path: Path
         assert (
             f"aoi_jsr.L5X:{line}:14: error E124 an add-on instruction cannot call a routine" in out
         )
+
+
+def test_superscript_digits_in_l5k_dimensions_are_a_syntax_error(tmp_path: Path) -> None:
+    # sections.L5K mutant seed 3260529364 (a byte flip): `DINT[3]` became `DINT[²]`. '²' is a
+    # digit to str.isdigit() but not to int(): the reader raised ValueError. Every reader's
+    # digit test is now str.isdecimal(), which accepts exactly what int() reads.
+    text = (ROOT / "tests" / "l5k" / "fixtures" / "sections.L5K").read_text(encoding="utf-8")
+    assert "Counts : DINT[3]" in text
+    mutant = tmp_path / "sup.L5K"
+    mutant.write_text(text.replace("Counts : DINT[3]", "Counts : DINT[\u00b2]"), encoding="utf-8")
+    line = text[: text.index("Counts : DINT[3]")].count("\n") + 1
+    r = logixst("check", mutant, timeout=60)
+    assert r.code == 1 and "Traceback" not in r.err, r.err
+    assert f"sup.L5K:{line}:" in r.out and "array dimensions must be whole numbers" in r.out
