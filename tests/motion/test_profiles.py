@@ -138,7 +138,8 @@ def test_change_time_formula():
 
 
 def test_ruckig_oracle_durations():
-    ruckig = pytest.importorskip("ruckig")
+    import ruckig  # a test extra (pyproject)
+
     cases = [
         (10.0, Limits(10.0, 20.0, 20.0), math.inf),
         (2.0, Limits(10.0, 20.0, 20.0), math.inf),

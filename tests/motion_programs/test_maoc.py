@@ -631,7 +631,6 @@ def test_edges_of_a_real_tag_is_a_usage_error(mp) -> None:
 
 
 def test_plot_draws_an_edges_lane(mp, tmp_path) -> None:
-    pytest.importorskip("matplotlib")
     png = tmp_path / "oc.png"
     code, _, err = mp.run(
         head(NARROW) + NARROW + "END_VAR\n"

@@ -54,7 +54,6 @@ def test_units_group_the_subplots() -> None:
 
 @pytest.mark.parametrize("with_trace", [False, True])
 def test_plot_written_with_or_without_trace(mp, tmp_path, with_trace: bool) -> None:
-    pytest.importorskip("matplotlib")
     png = tmp_path / "out.png"
     extra = ["--trace", str(tmp_path / "t.csv")] if with_trace else []
     code, _, err = mp.run(SRC, ["--scans", "200", "--plot", str(png), *WATCH, *extra])
@@ -101,7 +100,6 @@ def test_plot_file_must_be_png(mp, tmp_path) -> None:
 @pytest.mark.parametrize(("n", "views"), [(2, ["X-Y"]), (3, ["X-Y", "X-Z", "Y-Z"])])
 def test_coordinate_path_views(tmp_path, monkeypatch, n: int, views: list[str]) -> None:
     # a 2-axis system is drawn in its X-Y plane; a 3-axis one in the three planes
-    pytest.importorskip("matplotlib")
     import matplotlib.figure
 
     from interpreter.plot import PlotData, Series, write_plot
