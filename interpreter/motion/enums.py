@@ -57,6 +57,21 @@ class CamDirection(IntEnum):
     UNCHANGED = 3
 
 
+def direction_sign(direction: int, last_dir: dict[int, int], axis: int) -> int:
+    """The sign a cam or gear applies on `axis` (Same +1, Opposite -1, Reverse the opposite of
+    the axis's last one, Unchanged the last one; first time: Opposite, Same), remembered
+    in `last_dir` for the next start (SPEC 5, MATC direction; MAG and position cams alike)."""
+    last = last_dir.get(axis, 0)
+    sign = {
+        CamDirection.SAME: 1,
+        CamDirection.OPPOSITE: -1,
+        CamDirection.REVERSE: -last if last else -1,
+        CamDirection.UNCHANGED: last if last else 1,
+    }[CamDirection(direction)]
+    last_dir[axis] = sign
+    return sign
+
+
 class ExecutionMode(IntEnum):
     ONCE = 0
     CONTINUOUS = 1

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpreter.motion.enums import CamDirection, EventKind, MasterReference, StopType
+from interpreter.motion.enums import EventKind, MasterReference, StopType, direction_sign
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.process import (
     EMPTY,
@@ -239,14 +239,7 @@ def start_gear(
         return StartResult(error=MotionError.SHUTDOWN_STATE)
     if not group.servo_on[slave]:
         return StartResult(error=MotionError.SERVO_OFF_STATE)
-    last = gears.last_dir.get(slave, 0)
-    sign = {
-        CamDirection.SAME: 1,
-        CamDirection.OPPOSITE: -1,
-        CamDirection.REVERSE: -last if last else -1,
-        CamDirection.UNCHANGED: last if last else 1,
-    }[CamDirection(direction)]
-    gears.last_dir[slave] = sign
+    sign = direction_sign(direction, gears.last_dir, slave)
     ref = group.effective_reference(master, MasterReference(reference))
     h = group.new_handle()
 

@@ -33,7 +33,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpreter.motion.cam import CamProfile, ProfileBank
-from interpreter.motion.enums import CamDirection, EventKind, MasterReference, StopType
+from interpreter.motion.enums import (
+    CamDirection,
+    EventKind,
+    MasterReference,
+    StopType,
+    direction_sign,
+)
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.process import (
     EMPTY,
@@ -938,14 +944,7 @@ def start_mapc(
         return StartResult(error=MotionError.SHUTDOWN_STATE)
     if not group.servo_on[slave]:
         return StartResult(error=MotionError.SERVO_OFF_STATE)
-    last = cams.last_dir.get(slave, 0)
-    sign = {
-        CamDirection.SAME: 1,
-        CamDirection.OPPOSITE: -1,
-        CamDirection.REVERSE: -last if last else -1,
-        CamDirection.UNCHANGED: last if last else 1,
-    }[CamDirection(direction)]
-    cams.last_dir[slave] = sign
+    sign = direction_sign(direction, cams.last_dir, slave)
     law = CamLaw(
         profile,
         periodic=execution_mode == PositionCamMode.CONTINUOUS,

@@ -19,6 +19,7 @@ from interpreter.motion.enums import (
     LockDirection,
     MotionType,
     StopType,
+    direction_sign,
 )
 from interpreter.motion.errors import MotionError, StartResult, bad_operand
 from interpreter.motion.process import (
@@ -479,14 +480,7 @@ def start_time_cam(
         return StartResult(error=MotionError.SERVO_OFF_STATE)
     if master_driven and not pending and group.find_link(axis, MotionType.TIME_CAM) is None:
         return StartResult(error=MotionError.MDSC_NOT_ACTIVATED)
-    last = cams.last_dir.get(axis, 0)
-    sign = {
-        CamDirection.SAME: 1,
-        CamDirection.OPPOSITE: -1,
-        CamDirection.REVERSE: -last if last else -1,
-        CamDirection.UNCHANGED: last if last else 1,
-    }[CamDirection(direction)]
-    cams.last_dir[axis] = sign
+    sign = direction_sign(direction, cams.last_dir, axis)
     h = group.new_handle()
     cam = TimeCam(
         h, axis, profile, sign * distance_scaling, time_scaling, ExecutionMode(execution_mode)
