@@ -1,8 +1,9 @@
 """Shared pieces of the fuzz suite (issue 14): the budget, a deep-stack runner, invariants.
 
 Budget: the default (CI) mode is bounded to a few seconds per component; set
-LOGIXST_FUZZ_LONG=1 for the long mode (hundreds of times more cases, for runs on demand),
-or LOGIXST_FUZZ_SCALE=N to multiply the default case counts by N.
+LOGIXST_FUZZ_LONG=1 for the long mode (300 times the cases, about 20 minutes on 2 cores, for
+runs on demand), or LOGIXST_FUZZ_SCALE=N to multiply the default case counts by N (it also sets
+the long mode's multiplier, e.g. 500 for a run of about 35 minutes).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from interpreter.semantics.types import ArrayType, Elementary, Kind
 
 ROOT = Path(__file__).resolve().parents[2]
 LONG = os.environ.get("LOGIXST_FUZZ_LONG", "") not in ("", "0")
-SCALE = 300 if LONG else int(os.environ.get("LOGIXST_FUZZ_SCALE", "1"))
+SCALE = int(os.environ.get("LOGIXST_FUZZ_SCALE", "300" if LONG else "1"))
 
 T = TypeVar("T")
 
