@@ -94,19 +94,24 @@ class Schedule:
         for task in self.periodic:
             while task.next_due <= now + EPS:
                 ctx.now_ms = task.next_due
-                self._run_task(task.priority, task.mains, ctx)
+                self._run_task(task.priority, task.mains, ctx, task.rate_ms)
                 task.next_due += task.rate_ms
         ctx.now_ms = now
         self._run_task(CONTINUOUS_PRIORITY, self.continuous, ctx)
 
-    def _run_task(self, priority: int, mains: list[Main], ctx: Any) -> None:
-        """Run one task's programs, then the event tasks it left waiting."""
+    def _run_task(
+        self, priority: int, mains: list[Main], ctx: Any, period_ms: float | None = None
+    ) -> None:
+        """Run one task's programs (period_ms: a periodic task's rate), then the event tasks
+        it left waiting."""
         saved, self.priority = self.priority, priority
+        saved_period, ctx.task_period_ms = ctx.task_period_ms, period_ms
         try:
             for fn in mains:
                 fn(self.T, ctx)
         finally:
             self.priority = saved
+            ctx.task_period_ms = saved_period
         while self.queue:
             self.queue.sort(key=lambda e: e.priority)
             self._run_event(self.queue.pop(0), ctx)

@@ -34,6 +34,9 @@ class ExecContext:
 
     now_ms: float = 0.0  # virtual time at the start of the current scan
     scan_period_ms: float = 1.0
+    # period of the periodic task running now; None in the continuous task and event tasks
+    # (the time-based process blocks take their DeltaT from it, block_timing.py)
+    task_period_ms: float | None = None
     first_scan: bool = False
     steps: int = 0  # statements executed in this scan (watchdog)
     budget: int = 5_000_000
