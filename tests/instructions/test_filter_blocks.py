@@ -1,0 +1,210 @@
+"""LPF, HPF, LDLG, DEDT, LDL2, NTCH through `logixst run` and on their tags (decisions 0139,
+0170, 0171). Expected values are closed-form responses of the continuous filters sampled at
+the scan instants (the blocks' discretisation is exact for an input held over the interval
+ending at the execution), with the working in the comments.
+
+A lone .st file runs in the continuous task: the first scan's DeltaT is 0 (the block
+initialises, Out = steady state for In), every later one is the scan period.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from interpreter.instructions import filter_blocks as fb
+from interpreter.vm.context import ExecContext
+from tests.instructions.run_cli import trace
+from tests.instructions.structs import new_struct, struct_type
+
+
+def _run(tmp_path: Path, decl: str, body: str, scans: int, watch: list[str], period_ms: float):
+    """Run `body` each scan after `n := n + 1` (n = 1 on the first scan)."""
+    src = f"VAR n : DINT; {decl} END_VAR\nn := n + 1;\n{body}\n"
+    rows, report = trace(tmp_path, src, ".st", scans, watch, period_ms=period_ms)
+    assert report["diagnostics"] == []
+    return rows
+
+
+def _col(rows: list[dict[str, str]], name: str) -> list[float]:
+    return [float(r[name]) for r in rows]
+
+
+def _ints(rows: list[dict[str, str]], name: str) -> list[int]:
+    return [int(r[name]) for r in rows]
+
+
+STEP = "IF n > 1 THEN f.In := 1.0; END_IF;\n"  # In steps 0 -> 1 after the first scan
+
+
+# ------------------------------------------------------------------ LPF
+def test_lpf_first_order_step_response(tmp_path: Path) -> None:
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;",
+                "f.WLag := 10.0; f.Order := 1;\n" + STEP + "LPF(f);", 8, ["f.Out", "f.Status",
+                "f.DeltaT", "f.EnableOut"], 10.0)  # fmt: skip
+    out = _col(rows, "f.Out")
+    assert out[0] == 0.0  # first scan: initialised on In = 0
+    # scan k >= 1: t = k x 0.01 s after the step, Out = 1 - e^(-10 t)
+    for k in range(1, 8):
+        assert out[k] == pytest.approx(1.0 - math.exp(-10.0 * 0.01 * k), rel=1e-6)
+    assert _col(rows, "f.DeltaT")[1:] == [pytest.approx(0.01)] * 7
+    assert set(_ints(rows, "f.Status")) == {0} and set(_ints(rows, "f.EnableOut")) == {1}
+
+
+def test_lpf_second_order_is_butterworth(tmp_path: Path) -> None:
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;",
+                "f.WLag := 20.0; f.Order := 2;\n" + STEP + "LPF(f);", 10, ["f.Out"], 10.0)  # fmt: skip
+    out = _col(rows, "f.Out")
+    # w^2 / (s^2 + sqrt2 w s + w^2): zeta = 1/sqrt2, wd = w/sqrt2, zeta/sqrt(1-zeta^2) = 1:
+    # y(t) = 1 - e^(-w t/sqrt2) (cos(w t/sqrt2) + sin(w t/sqrt2))
+    for k in range(1, 10):
+        a = 20.0 * 0.01 * k / math.sqrt(2.0)
+        assert out[k] == pytest.approx(1.0 - math.exp(-a) * (math.cos(a) + math.sin(a)), rel=1e-5)
+
+
+def test_lpf_third_order_is_butterworth(tmp_path: Path) -> None:
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;",
+                "f.WLag := 20.0; f.Order := 3;\n" + STEP + "LPF(f);", 10, ["f.Out"], 10.0)  # fmt: skip
+    out = _col(rows, "f.Out")
+    # w^3 / ((s + w)(s^2 + w s + w^2)), partial fractions of the step:
+    # y(t) = 1 - e^(-w t) - (2/sqrt3) e^(-w t/2) sin(sqrt3 w t/2)
+    for k in range(1, 10):
+        t = 0.01 * k
+        want = (
+            1
+            - math.exp(-20 * t)
+            - 2 / math.sqrt(3) * math.exp(-10 * t) * math.sin(math.sqrt(3) * 10 * t)
+        )
+        assert out[k] == pytest.approx(want, rel=1e-5, abs=1e-7)
+
+
+def test_lpf_initialize_sets_out_to_in(tmp_path: Path) -> None:
+    body = "f.WLag := 1.0; f.In := 5.0 * n; f.Initialize := n = 3;\nLPF(f);"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 4, ["f.Out"], 10.0)
+    out = _col(rows, "f.Out")
+    assert out[0] == 5.0  # first execution: steady state on In 5
+    # scan 2: In 10, Out = 5 + (10 - 5)(1 - e^(-0.01))
+    assert out[1] == pytest.approx(5 + 5 * (1 - math.exp(-0.01)), rel=1e-6)
+    assert out[2] == 15.0  # Initialize: Out = In = 15
+    # scan 4: from 15 towards In 20 over 0.01 s
+    assert out[3] == pytest.approx(15 + 5 * (1 - math.exp(-0.01)), rel=1e-6)
+
+
+def test_lpf_invalid_order_and_clamped_frequency(tmp_path: Path) -> None:
+    # Order 5: OrderInv (bit 2) + InstructFault (bit 0) = 5, filtered as order 1.
+    # WLag 100 above 0.36 / 0.01 s = 36 rad/s: WLagInv (bit 1), filtered with WLag 36.
+    body = "f.WLag := 100.0; f.Order := 5;\n" + STEP + "LPF(f);"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 3, ["f.Out", "f.Status",
+                "f.WLagInv", "f.OrderInv", "f.InstructFault"], 10.0)  # fmt: skip
+    assert _col(rows, "f.Out")[1] == pytest.approx(1 - math.exp(-0.36), rel=1e-6)
+    assert _ints(rows, "f.Status")[1:] == [7, 7]  # bits 0, 1, 2
+    assert (rows[1]["f.WLagInv"], rows[1]["f.OrderInv"], rows[1]["f.InstructFault"]) == (
+        "1",
+        "1",
+        "1",
+    )
+    # the first scan (DeltaT 0) cannot compute the frequency limits: only OrderInv
+    assert _ints(rows, "f.Status")[0] == 5
+
+
+def test_lpf_zero_frequency_is_raised_to_the_low_limit(tmp_path: Path) -> None:
+    # WLag 0 (a new tag). Scan 1 (DeltaT 0): no limit can be computed, WLag <= 0 is invalid
+    # and nothing is filtered. Scan 2 (DeltaT 0.01): WLag raised to the order-1 low limit
+    # 1e-7 / 0.01 = 1e-5 rad/s, the block initialises on In 0. Scan 3, In 1:
+    # Out = 1 - e^(-1e-5 x 0.01) = 1e-7 (to 6 digits). Status = bits 0, 1 throughout.
+    body = "f.Order := 1; f.WLag := 0.0; IF n > 2 THEN f.In := 1.0; END_IF;\nLPF(f);"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 3, ["f.Out", "f.Status"], 10.0)
+    assert _col(rows, "f.Out")[:2] == [0.0, 0.0]
+    assert _col(rows, "f.Out")[2] == pytest.approx(1e-7, rel=1e-5)
+    assert _ints(rows, "f.Status") == [3, 3, 3]
+
+
+def test_lpf_timing_modes(tmp_path: Path) -> None:
+    # oversample: DeltaT = OversampleDT = 0.05 s whatever the scan period
+    body = "f.WLag := 2.0; f.Order := 1; f.TimingMode := 1; f.OversampleDT := 0.05;\n"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body + STEP + "LPF(f);", 3, ["f.Out"], 1.0)
+    # scan 0 is the initialisation (Out = In = 0), then two steps of 0.05 s
+    assert _col(rows, "f.Out")[2] == pytest.approx(1 - math.exp(-2.0 * 0.1), rel=1e-6)
+
+
+def test_lpf_invalid_timing_mode_leaves_out(tmp_path: Path) -> None:
+    body = "f.WLag := 2.0; f.Order := 1; f.In := 4.0;\nIF n > 2 THEN f.TimingMode := 3; END_IF;\nLPF(f);"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 4, ["f.Out", "f.Status"], 10.0)
+    assert _col(rows, "f.Out") == [4.0, 4.0, 4.0, 4.0]
+    # TimingModeInv is bit 27, with InstructFault: 2^27 + 1
+    assert _ints(rows, "f.Status") == [0, 0, 2**27 + 1, 2**27 + 1]
+
+
+def test_lpf_real_time_sampling_missed_and_invalid_delta_t(tmp_path: Path) -> None:
+    # stamps every scan 20 ms apart with RTSTime 10: RTSMissed (bit 28, not a fault)
+    body = (
+        "f.WLag := 1.0; f.Order := 1; f.TimingMode := 2; f.RTSTime := 10;\n"
+        "f.RTSTimeStamp := 20 * n;\n" + STEP + "LPF(f);"
+    )
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 3, ["f.Out", "f.Status"], 1.0)
+    assert _ints(rows, "f.Status") == [0, 2**28, 2**28]
+    assert _col(rows, "f.Out")[2] == pytest.approx(1 - math.exp(-0.04), rel=1e-6)  # 2 x 20 ms
+    # oversample DeltaT -1: DeltaTInv (bit 31) + InstructFault, a negative DINT
+    body = "f.WLag := 1.0; f.TimingMode := 1; f.OversampleDT := -1.0;\nLPF(f);"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 1, ["f.Status"], 1.0)
+    assert _ints(rows, "f.Status") == [-(2**31) + 1]
+
+
+def test_lpf_prescan_reinitialises() -> None:
+    s = new_struct("FILTER_LOW_PASS", WLag=1.0, Order=1, In=3.0)
+    ctx = ExecContext(now_ms=0.0, task_period_ms=10.0)
+    fb.lpf(ctx, True, s)
+    ix = struct_type("FILTER_LOW_PASS").index
+    assert s[ix["OUT"]] == 3.0  # first execution: steady state
+    s[ix["IN"]] = 4.0
+    fb.lpf(ctx, True, s)
+    assert s[ix["OUT"]] == pytest.approx(3 + (1 - math.exp(-0.01)), rel=1e-6)
+    fb.lpf_prescan(ctx, True, s)
+    fb.lpf(ctx, True, s)
+    assert s[ix["OUT"]] == 4.0  # initialised again on In
+
+
+def test_lpf_non_finite_out_then_restart() -> None:
+    s = new_struct("FILTER_LOW_PASS", WLag=1.0, Order=1, In=math.inf)
+    ix = struct_type("FILTER_LOW_PASS").index
+    ctx = ExecContext(now_ms=0.0, task_period_ms=10.0)
+    fb.lpf(ctx, True, s)
+    assert not math.isfinite(s[ix["OUT"]]) and s[ix["ENABLEOUT"]] == 0  # inf - inf
+    s[ix["IN"]] = 2.0
+    fb.lpf(ctx, True, s)
+    assert s[ix["OUT"]] == 2.0 and s[ix["ENABLEOUT"]] == 1  # valid again: Out = In
+
+
+# ------------------------------------------------------------------ HPF
+def test_hpf_first_order_step_decays(tmp_path: Path) -> None:
+    rows = _run(tmp_path, "f : FILTER_HIGH_PASS;",
+                "f.WLead := 10.0; f.Order := 1;\n" + STEP + "HPF(f);", 6, ["f.Out", "f.Status"],
+                10.0)  # fmt: skip
+    out = _col(rows, "f.Out")
+    assert out[0] == 0.0
+    # s / (s + w): a unit step gives e^(-w t), t = k x 0.01 s
+    for k in range(1, 6):
+        assert out[k] == pytest.approx(math.exp(-10.0 * 0.01 * k), rel=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_hpf_second_order_step(tmp_path: Path) -> None:
+    rows = _run(tmp_path, "f : FILTER_HIGH_PASS;",
+                "f.WLead := 20.0; f.Order := 2;\n" + STEP + "HPF(f);", 8, ["f.Out"], 10.0)  # fmt: skip
+    out = _col(rows, "f.Out")
+    # s^2 / (s^2 + sqrt2 w s + w^2) step = second derivative of the low-pass step over w^2...
+    # directly: Y = s / (s^2 + sqrt2 w s + w^2) = e^(-a t)(cos(b t) - sin(b t)), a = b = w/sqrt2
+    for k in range(1, 8):
+        a = 20.0 * 0.01 * k / math.sqrt(2.0)
+        assert out[k] == pytest.approx(math.exp(-a) * (math.cos(a) - math.sin(a)), abs=1e-6)
+
+
+def test_hpf_initialize_gives_zero_and_invalid_inputs(tmp_path: Path) -> None:
+    body = "f.WLead := 0.0; f.Order := 0; f.In := 7.0; f.Initialize := TRUE;\nHPF(f);"
+    rows = _run(tmp_path, "f : FILTER_HIGH_PASS;", body, 2, ["f.Out", "f.Status",
+                "f.WLeadInv", "f.OrderInv"], 10.0)  # fmt: skip
+    assert _col(rows, "f.Out") == [0.0, 0.0]  # steady state of a high-pass: 0
+    assert _ints(rows, "f.Status") == [7, 7]  # WLeadInv bit 1, OrderInv bit 2, fault bit 0
+    assert rows[1]["f.WLeadInv"] == "1" and rows[1]["f.OrderInv"] == "1"
