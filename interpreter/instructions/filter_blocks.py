@@ -244,3 +244,37 @@ def lpf_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
 @prescan("HPF")
 def hpf_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
     reset_block(s, _HPF)
+
+
+# ------------------------------------------------------------------ LDLG
+_LDLG = block("LEAD_LAG")
+
+
+@implements("LDLG")
+def ldlg(ctx: ExecContext, rung: bool, s: list) -> None:
+    """Out = Gain x (1 + Lead s) / (1 + Lag s) x In + Bias, Lead and Lag in seconds
+    (decision 0171). A negative Lead or Lag sets LeadInv / LagInv and counts as 0; with no
+    lag (Lag 0) the lead cannot act and Out = Gain x In + Bias. Initialize: steady state on
+    InitialValue, Out = Gain x InitialValue + Bias."""
+    b = _LDLG
+    dt = delta_t(ctx, s, b)
+    clear_flags(s, b, "LEADINV", "LAGINV")
+    if dt is not None:
+        lead, lag = float(s[b["LEAD"]]), float(s[b["LAG"]])
+        s[b["LEADINV"]], s[b["LAGINV"]] = int(lead < 0.0), int(lag < 0.0)
+        lead, lag = max(lead, 0.0), max(lag, 0.0)
+        init = bool(s[b["INITIALIZE"]])
+        u = float(s[b["INITIALVALUE"]] if init else s[b["IN"]])
+        if lag > 0.0:
+            y = run_filter(s, b, (lead / lag, 1.0 / lag), (1.0, 1.0 / lag), dt, u, init)
+        else:
+            # no lag: a pure gain; a later Lag > 0 starts from the steady state (bumpless)
+            y = u
+            s[b["PRIMED"]] = 0
+        store_filtered(s, b, s[b["GAIN"]] * y + s[b["BIAS"]])
+    finish(s, b)
+
+
+@prescan("LDLG")
+def ldlg_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
+    reset_block(s, _LDLG)

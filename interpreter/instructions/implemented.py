@@ -93,6 +93,7 @@ IMPLEMENTED = frozenset(
         "ISNAN@st",
         "JKFF",
         "LC",
+        "LDLG",
         "LFL",
         "LFU",
         "LIM",

@@ -208,3 +208,47 @@ def test_hpf_initialize_gives_zero_and_invalid_inputs(tmp_path: Path) -> None:
     assert _col(rows, "f.Out") == [0.0, 0.0]  # steady state of a high-pass: 0
     assert _ints(rows, "f.Status") == [7, 7]  # WLeadInv bit 1, OrderInv bit 2, fault bit 0
     assert rows[1]["f.WLeadInv"] == "1" and rows[1]["f.OrderInv"] == "1"
+
+
+# ------------------------------------------------------------------ LDLG
+def test_ldlg_pure_lag_with_gain_and_bias(tmp_path: Path) -> None:
+    body = "f.Lag := 1.0; f.Gain := 2.0; f.Bias := 1.0;\n" + STEP + "LDLG(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 6, ["f.Out", "f.Status"], 100.0)
+    out = _col(rows, "f.Out")
+    assert out[0] == 1.0  # steady state on In 0: 2 x 0 + 1
+    # 1/(1 + s) step, t = k x 0.1 s: Out = 2 (1 - e^(-t)) + 1
+    for k in range(1, 6):
+        assert out[k] == pytest.approx(2 * (1 - math.exp(-0.1 * k)) + 1, rel=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_ldlg_lead_over_lag(tmp_path: Path) -> None:
+    body = "f.Lead := 2.0; f.Lag := 1.0; f.Gain := 1.0;\n" + STEP + "LDLG(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 6, ["f.Out"], 100.0)
+    out = _col(rows, "f.Out")
+    # (1 + 2s)/(1 + s) step: 1 + (Lead/Lag - 1) e^(-t/Lag) = 1 + e^(-t), t = k x 0.1 s
+    for k in range(1, 6):
+        assert out[k] == pytest.approx(1 + math.exp(-0.1 * k), rel=1e-6)
+
+
+def test_ldlg_initialize_and_no_lag(tmp_path: Path) -> None:
+    body = (
+        "f.Lag := 1.0; f.Gain := 3.0; f.Bias := -1.0; f.In := 4.0; f.InitialValue := 10.0;\n"
+        "f.Initialize := n = 2;\nIF n = 4 THEN f.Lag := 0.0; END_IF;\nLDLG(f);"
+    )
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 4, ["f.Out"], 100.0)
+    out = _col(rows, "f.Out")
+    assert out[0] == 11.0  # steady on In 4: 3 x 4 - 1
+    assert out[1] == 29.0  # Initialize: 3 x 10 - 1
+    # from 10 towards In 4 for 0.1 s: 4 + 6 e^(-0.1), x 3 - 1
+    assert out[2] == pytest.approx(3 * (4 + 6 * math.exp(-0.1)) - 1, rel=1e-6)
+    assert out[3] == 11.0  # Lag 0: Out = Gain x In + Bias
+
+
+def test_ldlg_negative_time_constants_are_invalid(tmp_path: Path) -> None:
+    body = "f.Lead := -1.0; f.Lag := -2.0; f.Gain := 1.0; f.In := 5.0;\nLDLG(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 2, ["f.Out", "f.Status", "f.LeadInv",
+                "f.LagInv"], 100.0)  # fmt: skip
+    assert _ints(rows, "f.Status") == [7, 7]  # LeadInv bit 1, LagInv bit 2, fault bit 0
+    assert rows[1]["f.LeadInv"] == "1" and rows[1]["f.LagInv"] == "1"
+    assert _col(rows, "f.Out") == [5.0, 5.0]  # both taken as 0: Out = In
