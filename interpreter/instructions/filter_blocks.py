@@ -33,6 +33,7 @@ import numpy as np
 
 from ..runtime.motion_layout import pack, packed_words, struct_type
 from ..vm.context import ExecContext
+from ..vm.refs import ArrayRef
 from ..vm.values import f32
 from .block_timing import TimingLayout, restart, sample, timing_layout
 from .registry import implements, prescan
@@ -278,3 +279,46 @@ def ldlg(ctx: ExecContext, rung: bool, s: list) -> None:
 @prescan("LDLG")
 def ldlg_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
     reset_block(s, _LDLG)
+
+
+# ------------------------------------------------------------------ DEDT
+_DEDT = block("DEADTIME")
+
+
+@implements("DEDT")
+def dedt(ctx: ExecContext, rung: bool, s: list, storage: ArrayRef) -> None:
+    """Out = Gain x In(Deadtime ago) + Bias (decision 0171). The storage array is a ring of
+    past inputs: the delay in executions is N = Deadtime / DeltaT rounded to the nearest
+    whole number; each execution reads the element written N executions ago, then writes In.
+    Deadtime below 0 or above (array size x DeltaT) sets DeadtimeInv and is clamped. The first
+    execution after prescan fills the array with In (the process was at rest). While
+    InFault is set: InFaulted, Out held, nothing stored; when it clears the block
+    re-initialises on In."""
+    b = _DEDT
+    dt = delta_t(ctx, s, b)
+    clear_flags(s, b, "DEADTIMEINV")
+    if dt is not None:
+        x, size = float(s[b["IN"]]), len(storage)
+        s[b["INFAULTED"]] = int(bool(s[b["INFAULT"]]))
+        if s[b["INFAULTED"]]:
+            s[b["PRIMED"]] = 0
+        elif not s[b["PRIMED"]] or size == 0:
+            for i in range(size):
+                storage.set(i, x)
+            s[b["INDEX"]], s[b["PRIMED"]] = 0, 1
+            set_out(s, b, s[b["GAIN"]] * x + s[b["BIAS"]])
+        elif dt > 0.0:
+            deadtime = float(s[b["DEADTIME"]])
+            deadtime, s[b["DEADTIMEINV"]] = limit(deadtime, 0.0, size * dt)
+            steps = min(size, round(deadtime / dt))
+            i = s[b["INDEX"]] % size
+            delayed = float(storage.get((i - steps) % size)) if steps else x  # type: ignore[arg-type]
+            storage.set(i, x)
+            s[b["INDEX"]] = (i + 1) % size
+            set_out(s, b, s[b["GAIN"]] * delayed + s[b["BIAS"]])
+    finish(s, b)
+
+
+@prescan("DEDT")
+def dedt_prescan(ctx: ExecContext, rung: bool, s: list, storage: ArrayRef) -> None:
+    reset_block(s, _DEDT)

@@ -62,6 +62,7 @@ IMPLEMENTED = frozenset(
         "DCST",
         "DCSTL",
         "DCSTM",
+        "DEDT",
         "DEG@rll",
         "DEG@st",
         "DELETE",

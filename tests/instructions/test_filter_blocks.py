@@ -252,3 +252,43 @@ def test_ldlg_negative_time_constants_are_invalid(tmp_path: Path) -> None:
     assert _ints(rows, "f.Status") == [7, 7]  # LeadInv bit 1, LagInv bit 2, fault bit 0
     assert rows[1]["f.LeadInv"] == "1" and rows[1]["f.LagInv"] == "1"
     assert _col(rows, "f.Out") == [5.0, 5.0]  # both taken as 0: Out = In
+
+
+# ------------------------------------------------------------------ DEDT
+DEDT_DECL = "d : DEADTIME; buf : ARRAY[0..9] OF REAL;"
+
+
+def test_dedt_delays_by_whole_scans(tmp_path: Path) -> None:
+    body = "d.Deadtime := 0.3; d.Gain := 2.0; d.Bias := 1.0; d.In := n;\nDEDT(d, buf);"
+    rows = _run(tmp_path, DEDT_DECL, body, 8, ["d.Out", "d.Status", "buf[0]"], 100.0)
+    # 0.3 s / 0.1 s = 3 scans. Scan 1 fills the array with In 1: Out = 2 x 1 + 1 = 3.
+    # Scans 2-4 read the filled 1s (3); scan k >= 5 reads In of scan k - 3 = k - 3:
+    # Out = 2 (k - 3) + 1 -> 5, 7, 9, 11 for k = 5..8
+    assert _col(rows, "d.Out") == [3.0, 3.0, 3.0, 3.0, 5.0, 7.0, 9.0, 11.0]
+    assert set(_ints(rows, "d.Status")) == {0}
+    assert _col(rows, "buf[0]")[1] == 2.0  # the ring starts at element 0 after the fill
+
+
+def test_dedt_zero_deadtime_and_invalid_deadtime(tmp_path: Path) -> None:
+    body = "d.Deadtime := 0.0; d.Gain := 1.0; d.In := n;\nDEDT(d, buf);"
+    rows = _run(tmp_path, DEDT_DECL, body, 3, ["d.Out"], 100.0)
+    assert _col(rows, "d.Out") == [1.0, 2.0, 3.0]  # no delay
+    # 2 s > 10 elements x 0.1 s: DeadtimeInv (bit 2) + fault = 5, clamped to 10 scans:
+    # Out stays on the fill value 1 until scan 12 reads In of scan 2
+    body = "d.Deadtime := 2.0; d.Gain := 1.0; d.In := n;\nDEDT(d, buf);"
+    rows = _run(tmp_path, DEDT_DECL, body, 13, ["d.Out", "d.Status", "d.DeadtimeInv"], 100.0)
+    assert _col(rows, "d.Out") == [1.0] * 11 + [2.0, 3.0]
+    assert _ints(rows, "d.Status")[1:] == [5] * 12 and rows[5]["d.DeadtimeInv"] == "1"
+    body = "d.Deadtime := -1.0; d.Gain := 1.0; d.In := n;\nDEDT(d, buf);"
+    rows = _run(tmp_path, DEDT_DECL, body, 3, ["d.Out", "d.Status"], 100.0)
+    assert _col(rows, "d.Out") == [1.0, 2.0, 3.0] and _ints(rows, "d.Status")[1:] == [5, 5]
+
+
+def test_dedt_in_fault_holds_then_restarts(tmp_path: Path) -> None:
+    body = "d.Deadtime := 0.2; d.Gain := 1.0; d.In := 10.0 * n; d.InFault := n = 4;\nDEDT(d, buf);"
+    rows = _run(tmp_path, DEDT_DECL, body, 7, ["d.Out", "d.Status", "d.InFaulted"], 100.0)
+    # 2 scans of delay: 10 (fill), 10, 10, then InFault: held 10 with InFaulted (Status bit
+    # 1, not a parameter fault); scan 5 re-fills with 50, scan 6 reads 50, scan 7 reads 50
+    assert _col(rows, "d.Out") == [10.0, 10.0, 10.0, 10.0, 50.0, 50.0, 50.0]
+    assert _ints(rows, "d.Status") == [0, 0, 0, 2, 0, 0, 0]
+    assert _ints(rows, "d.InFaulted") == [0, 0, 0, 1, 0, 0, 0]
