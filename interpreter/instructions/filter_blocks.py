@@ -322,3 +322,48 @@ def dedt(ctx: ExecContext, rung: bool, s: list, storage: ArrayRef) -> None:
 @prescan("DEDT")
 def dedt_prescan(ctx: ExecContext, rung: bool, s: list, storage: ArrayRef) -> None:
     reset_block(s, _DEDT)
+
+
+# ------------------------------------------------------------------ LDL2
+_LDL2 = block("LEAD_LAG_SEC_ORDER")
+_LDL2_MAX_RATIO = {1: 40.0, 2: 10.0}  # largest WLag:WLead the block accepts, per order
+_LDL2_LOW_W_DT = {1: _LOW_W_DT[1], 2: _LOW_W_DT[2]}
+
+
+@implements("LDL2")
+def ldl2(ctx: ExecContext, rung: bool, s: list) -> None:
+    """Order 1: (s/WLead + 1)/(s/WLag + 1). Order 2: (s^2/WLead^2 + 2 ZetaLead s/WLead + 1)/
+    (s^2/WLag^2 + 2 ZetaLag s/WLag + 1). Frequencies limited as LPF's (decision 0170); then
+    WLag above 40 x WLead (order 1) or 10 x WLead (order 2) sets WLagRatioInv and WLag is
+    limited to that ratio. Order 2 only: ZetaLead 0..4, ZetaLag 0.05..4, else clamped with
+    their Status bit. Order outside 1..2: OrderInv, order 1. DC gain 1: Initialize gives
+    Out = In."""
+    b = _LDL2
+    dt = delta_t(ctx, s, b)
+    clear_flags(s, b, "WLEADINV", "WLAGINV", "ZETALEADINV", "ZETALAGINV", "ORDERINV")
+    clear_flags(s, b, "WLAGRATIOINV")
+    if dt is not None:
+        order = _order(s, b, (1, 2))
+        low = _LDL2_LOW_W_DT[order]
+        lead, s[b["WLEADINV"]] = frequency_limits(float(s[b["WLEAD"]]), dt, low)
+        lag, s[b["WLAGINV"]] = frequency_limits(float(s[b["WLAG"]]), dt, low)
+        if lead > 0.0 and lag > _LDL2_MAX_RATIO[order] * lead:
+            lag, s[b["WLAGRATIOINV"]] = _LDL2_MAX_RATIO[order] * lead, 1
+        if lead > 0.0 and lag > 0.0:
+            if order == 1:
+                num: tuple[float, ...] = (lag / lead, lag)
+                den: tuple[float, ...] = (1.0, lag)
+            else:
+                z_lead, s[b["ZETALEADINV"]] = limit(float(s[b["ZETALEAD"]]), 0.0, 4.0)
+                z_lag, s[b["ZETALAGINV"]] = limit(float(s[b["ZETALAG"]]), 0.05, 4.0)
+                r = lag * lag / (lead * lead)
+                num = (r, 2.0 * z_lead * lag * lag / lead, lag * lag)
+                den = (1.0, 2.0 * z_lag * lag, lag * lag)
+            u = float(s[b["IN"]])
+            store_filtered(s, b, run_filter(s, b, num, den, dt, u, bool(s[b["INITIALIZE"]])))
+    finish(s, b)
+
+
+@prescan("LDL2")
+def ldl2_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
+    reset_block(s, _LDL2)

@@ -96,6 +96,7 @@ IMPLEMENTED = frozenset(
         "ISNAN@st",
         "JKFF",
         "LC",
+        "LDL2",
         "LDLG",
         "LFL",
         "LFU",

@@ -292,3 +292,53 @@ def test_dedt_in_fault_holds_then_restarts(tmp_path: Path) -> None:
     assert _col(rows, "d.Out") == [10.0, 10.0, 10.0, 10.0, 50.0, 50.0, 50.0]
     assert _ints(rows, "d.Status") == [0, 0, 0, 2, 0, 0, 0]
     assert _ints(rows, "d.InFaulted") == [0, 0, 0, 1, 0, 0, 0]
+
+
+# ------------------------------------------------------------------ LDL2
+def test_ldl2_first_order_step(tmp_path: Path) -> None:
+    body = "f.WLead := 2.0; f.WLag := 10.0; f.Order := 1;\n" + STEP + "LDL2(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG_SEC_ORDER;", body, 6, ["f.Out", "f.Status"], 10.0)
+    out = _col(rows, "f.Out")
+    assert out[0] == 0.0
+    # (s/2 + 1)/(s/10 + 1) = (5s + 10)/(s + 10); step: 1 + (10/2 - 1) e^(-10 t) = 1 + 4 e^(-10 t)
+    for k in range(1, 6):
+        assert out[k] == pytest.approx(1 + 4 * math.exp(-10 * 0.01 * k), rel=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_ldl2_second_order_step(tmp_path: Path) -> None:
+    body = (
+        "f.WLead := 10.0; f.WLag := 20.0; f.ZetaLead := 0.0; f.ZetaLag := 1.0; f.Order := 2;\n"
+        + STEP
+        + "LDL2(f);"
+    )
+    rows = _run(tmp_path, "f : LEAD_LAG_SEC_ORDER;", body, 8, ["f.Out", "f.Status"], 10.0)
+    out = _col(rows, "f.Out")
+    # (s^2/a^2 + 1) w^2/(s + w)^2 with a = 10, w = 20 (ZetaLag 1: a double pole). Step:
+    # 1 - e^(-w t)(1 + w t) + (w^2/a^2) e^(-w t)(1 - w t)   [L^-1 of s/(s+w)^2 = e^(-wt)(1 - wt)]
+    for k in range(1, 8):
+        t = 0.01 * k
+        e = math.exp(-20 * t)
+        want = 1 - e * (1 + 20 * t) + 4 * e * (1 - 20 * t)
+        assert out[k] == pytest.approx(want, rel=1e-5, abs=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_ldl2_ratio_damping_and_order_limits(tmp_path: Path) -> None:
+    # order 1, WLag 30 > 40 x WLead 0.5 = 20: WLagRatioInv (bit 6) + fault = 65, WLag 20:
+    # step 1 + (20/0.5 - 1) e^(-20 t) = 1 + 39 e^(-20 t)
+    body = "f.WLead := 0.5; f.WLag := 30.0; f.Order := 1;\n" + STEP + "LDL2(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG_SEC_ORDER;", body, 2, ["f.Out", "f.Status",
+                "f.WLagRatioInv"], 10.0)  # fmt: skip
+    assert _col(rows, "f.Out")[1] == pytest.approx(1 + 39 * math.exp(-0.2), rel=1e-6)
+    assert _ints(rows, "f.Status") == [65, 65] and rows[1]["f.WLagRatioInv"] == "1"
+    # order 2: ZetaLead 5 > 4 (ZetaLeadInv, bit 3), ZetaLag 0.01 < 0.05 (ZetaLagInv, bit 4),
+    # WLead 100 > 0.36 / 0.01 = 36 (WLeadInv, bit 1): 1 + 2 + 8 + 16 = 27
+    body = "f.WLead := 100.0; f.WLag := 20.0; f.ZetaLead := 5.0; f.ZetaLag := 0.01; f.Order := 2;\nLDL2(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG_SEC_ORDER;", body, 2, ["f.Status"], 10.0)
+    assert _ints(rows, "f.Status")[1] == 27
+    # Order 3: OrderInv (bit 5) + fault = 33; WLag 0 with DeltaT 0.01 raised to its low
+    # limit: WLagInv (bit 2) = 37 on scan 2
+    body = "f.WLead := 1.0; f.Order := 3; f.In := 2.0;\nLDL2(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG_SEC_ORDER;", body, 2, ["f.Status", "f.OrderInv"], 10.0)
+    assert _ints(rows, "f.Status") == [37, 37] and rows[1]["f.OrderInv"] == "1"
