@@ -19,8 +19,8 @@ Sources: 1756-RM006 (filter and process chapters) and the Studio 5000 v37 help o
   an invalid Order sets OrderInv and the block uses its lowest order. InstructFault is set
   with any "...Inv" bit. A computed Out that is not finite is written as is and EnableOut
   cleared; the next finite execution re-initialises (Out = H(0) x In).
-Hidden members State1..n keep the filter state, Primed whether it was initialised since
-the last prescan.
+Hidden members State1..n keep the filter state (scaled so that a filter at rest stays at
+rest when its parameters change), Primed whether it was initialised since the last prescan.
 """
 
 from __future__ import annotations
@@ -155,22 +155,27 @@ def run_filter(
     s: list, b: Block, num: tuple[float, ...], den: tuple[float, ...], dt: float, u: float,
     init: bool,
 ) -> float:  # fmt: skip
-    """Advance the filter held in State1..n by dt with input u; returns the output."""
+    """Advance the filter held in State1..n by dt with input u; returns the output.
+
+    The members hold the canonical-form state times den[-1] (the last one is then In at
+    rest, whatever the coefficients): a filter at rest stays at rest when its frequency
+    or damping is changed online, and for a low-pass the members are Out and its
+    derivatives."""
     n = len(den) - 1
     states = [b[f"STATE{i}"] for i in range(1, n + 1)]
+    scale = den[-1]
     if init or not s[b["PRIMED"]]:
-        # steady state of the canonical form: only the last state is non-zero
         s[b["PRIMED"]] = 1
         for i in states:
             s[i] = 0.0
-        s[states[-1]] = u / den[-1]
+        s[states[-1]] = u
         return num[-1] / den[-1] * u  # H(0) x In, exactly
-    x = np.array([float(s[i]) for i in states])
+    x = np.array([float(s[i]) for i in states]) / scale
     if dt > 0.0:
         ad, bd, _, _ = discretise(num, den, dt)
         x = ad @ x + bd * u
         for i, v in zip(states, x, strict=True):
-            s[i] = float(v)
+            s[i] = float(v) * scale
     _, _, c, d = discretise(num, den, 0.0)
     return float(c @ x) + d * u
 
@@ -367,3 +372,39 @@ def ldl2(ctx: ExecContext, rung: bool, s: list) -> None:
 @prescan("LDL2")
 def ldl2_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
     reset_block(s, _LDL2)
+
+
+# ------------------------------------------------------------------ NTCH
+_NTCH = block("FILTER_NOTCH")
+_NTCH_LOW_W_DT = {2: _LOW_W_DT[2], 4: _LOW_W_DT[3]}
+
+
+@implements("NTCH")
+def ntch(ctx: ExecContext, rung: bool, s: list) -> None:
+    """Order 2: (s^2 + w^2)/(s^2 + (w/Q) s + w^2) with w = WNotch, Q = QFactor; order 4 is
+    its square. WNotch limited as LPF's (decision 0170, order 4 with the order-3 low limit),
+    QFactor 0.5..100; Order other than 2 or 4: OrderInv, order 2. Initialize: Out = In."""
+    b = _NTCH
+    dt = delta_t(ctx, s, b)
+    clear_flags(s, b, "WNOTCHINV", "QFACTORINV", "ORDERINV")
+    if dt is not None:
+        order = _order(s, b, (2, 4))
+        w, s[b["WNOTCHINV"]] = frequency_limits(float(s[b["WNOTCH"]]), dt, _NTCH_LOW_W_DT[order])
+        q, s[b["QFACTORINV"]] = limit(float(s[b["QFACTOR"]]), 0.5, 100.0)
+        if w > 0.0:
+            num: tuple[float, ...] = (1.0, 0.0, w * w)
+            den: tuple[float, ...] = (1.0, w / q, w * w)
+            if order == 4:
+                num, den = _square(num), _square(den)
+            u = float(s[b["IN"]])
+            store_filtered(s, b, run_filter(s, b, num, den, dt, u, bool(s[b["INITIALIZE"]])))
+    finish(s, b)
+
+
+def _square(p: tuple[float, ...]) -> tuple[float, ...]:
+    return tuple(float(c) for c in np.convolve(p, p))
+
+
+@prescan("NTCH")
+def ntch_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
+    reset_block(s, _NTCH)

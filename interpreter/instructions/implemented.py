@@ -164,6 +164,7 @@ IMPLEMENTED = frozenset(
         "MVMT",
         "NEG",
         "NOT@rll",
+        "NTCH",
         "ONS",
         "OR@rll",
         "OSF",

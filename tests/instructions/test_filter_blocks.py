@@ -152,6 +152,13 @@ def test_lpf_real_time_sampling_missed_and_invalid_delta_t(tmp_path: Path) -> No
     assert _ints(rows, "f.Status") == [-(2**31) + 1]
 
 
+def test_lpf_at_rest_stays_at_rest_when_retuned(tmp_path: Path) -> None:
+    # In constant 3: the third-order filter is at rest; changing WLag online must not bump Out
+    body = "f.Order := 3; f.In := 3.0;\nIF n < 3 THEN f.WLag := 5.0; ELSE f.WLag := 20.0; END_IF;\nLPF(f);"
+    rows = _run(tmp_path, "f : FILTER_LOW_PASS;", body, 5, ["f.Out"], 10.0)
+    assert _col(rows, "f.Out") == pytest.approx([3.0] * 5, rel=1e-6)
+
+
 def test_lpf_prescan_reinitialises() -> None:
     s = new_struct("FILTER_LOW_PASS", WLag=1.0, Order=1, In=3.0)
     ctx = ExecContext(now_ms=0.0, task_period_ms=10.0)
@@ -342,3 +349,51 @@ def test_ldl2_ratio_damping_and_order_limits(tmp_path: Path) -> None:
     body = "f.WLead := 1.0; f.Order := 3; f.In := 2.0;\nLDL2(f);"
     rows = _run(tmp_path, "f : LEAD_LAG_SEC_ORDER;", body, 2, ["f.Status", "f.OrderInv"], 10.0)
     assert _ints(rows, "f.Status") == [37, 37] and rows[1]["f.OrderInv"] == "1"
+
+
+# ------------------------------------------------------------------ NTCH
+def _notch_terms(t: float) -> tuple[float, float]:
+    """For w = 20, Q = 2: alpha = w/2Q = 5, wd = w sqrt(1 - 1/4Q^2) = 5 sqrt15.
+    g(t) = L^-1 of 1/((s + alpha)^2 + wd^2) = e^(-alpha t) sin(wd t)/wd;
+    f'(t) with f = L^-1 of 1/((s + alpha)^2 + wd^2)^2 = e^(-alpha t)(sin wd t - wd t cos wd t)/2wd^3
+    (the standard pair for 1/(s^2 + b^2)^2, shifted)."""
+    a, wd = 5.0, 5.0 * math.sqrt(15.0)
+    e, sn, cs = math.exp(-a * t), math.sin(wd * t), math.cos(wd * t)
+    g = e * sn / wd
+    fp = e * (-a * (sn - wd * t * cs) + wd * wd * t * sn) / (2 * wd**3)
+    return g, fp
+
+
+def test_ntch_second_order_step(tmp_path: Path) -> None:
+    body = "f.WNotch := 20.0; f.QFactor := 2.0; f.Order := 2;\n" + STEP + "NTCH(f);"
+    rows = _run(tmp_path, "f : FILTER_NOTCH;", body, 10, ["f.Out", "f.Status"], 10.0)
+    out = _col(rows, "f.Out")
+    # H = 1 - (w/Q) s / (s^2 + (w/Q) s + w^2): step = 1 - (w/Q) g(t), w/Q = 10
+    for k in range(1, 10):
+        assert out[k] == pytest.approx(1 - 10 * _notch_terms(0.01 * k)[0], rel=1e-5, abs=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_ntch_fourth_order_step(tmp_path: Path) -> None:
+    body = "f.WNotch := 20.0; f.QFactor := 2.0; f.Order := 4;\n" + STEP + "NTCH(f);"
+    rows = _run(tmp_path, "f : FILTER_NOTCH;", body, 10, ["f.Out", "f.Status"], 10.0)
+    out = _col(rows, "f.Out")
+    # H^2 = (1 - G)^2 = 1 - 2G + G^2, G = (w/Q) s / D: step = 1 - 2 (w/Q) g + (w/Q)^2 f'
+    for k in range(1, 10):
+        g, fp = _notch_terms(0.01 * k)
+        assert out[k] == pytest.approx(1 - 20 * g + 100 * fp, rel=1e-5, abs=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_ntch_invalid_inputs(tmp_path: Path) -> None:
+    # Order 3: OrderInv (bit 3); QFactor 0 < 0.5: QFactorInv (bit 2); WNotch 50 > 36:
+    # WNotchInv (bit 1); with the fault: 15. A new tag's Order is 2 (no OrderInv).
+    body = "f.WNotch := 50.0; f.Order := 3; f.In := 1.0;\nNTCH(f);"
+    rows = _run(tmp_path, "f : FILTER_NOTCH;", body, 2, ["f.Out", "f.Status", "f.WNotchInv",
+                "f.QFactorInv", "f.OrderInv"], 10.0)  # fmt: skip
+    assert _ints(rows, "f.Status")[1] == 15
+    assert [rows[1][f"f.{m}"] for m in ("WNotchInv", "QFactorInv", "OrderInv")] == ["1"] * 3
+    assert _col(rows, "f.Out") == [1.0, 1.0]  # steady on a constant In: DC gain 1
+    rows = _run(tmp_path, "f : FILTER_NOTCH;", "f.WNotch := 5.0; f.QFactor := 1.0;\nNTCH(f);", 1,
+                ["f.Status"], 10.0)  # fmt: skip
+    assert _ints(rows, "f.Status") == [0]
