@@ -207,9 +207,14 @@ def frequency_limits(w: float, dt: float, low_w_dt: float) -> tuple[float, bool]
 
 
 def _order(s: list, b: Block, valid: tuple[int, ...]) -> int:
+    """The Order to filter with (OrderInv and the lowest order when invalid). A change of
+    order changes the state's meaning: the filter re-initialises on the present In."""
     order = s[b["ORDER"]]
     s[b["ORDERINV"]] = int(order not in valid)
-    return order if order in valid else valid[0]
+    order = order if order in valid else valid[0]
+    if s[b["LASTORDER"]] != order:
+        s[b["LASTORDER"]], s[b["PRIMED"]] = order, 0
+    return order
 
 
 def _pass_filter(ctx: ExecContext, s: list, b: Block, w_name: str, high_pass: bool) -> None:

@@ -397,3 +397,12 @@ def test_ntch_invalid_inputs(tmp_path: Path) -> None:
     rows = _run(tmp_path, "f : FILTER_NOTCH;", "f.WNotch := 5.0; f.QFactor := 1.0;\nNTCH(f);", 1,
                 ["f.Status"], 10.0)  # fmt: skip
     assert _ints(rows, "f.Status") == [0]
+
+
+def test_a_change_of_order_reinitialises(tmp_path: Path) -> None:
+    # NTCH at rest on In 2 with order 2, switched to order 4: the new (larger) state starts
+    # from the steady state of In, so Out stays 2 instead of jumping on stale states
+    body = "f.WNotch := 10.0; f.QFactor := 1.0; f.In := 2.0;\nIF n > 2 THEN f.Order := 4; END_IF;\nNTCH(f);"
+    rows = _run(tmp_path, "f : FILTER_NOTCH;", body, 4, ["f.Out", "f.Status"], 10.0)
+    assert _col(rows, "f.Out") == pytest.approx([2.0] * 4, rel=1e-6)
+    assert set(_ints(rows, "f.Status")) == {0}
