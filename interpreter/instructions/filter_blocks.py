@@ -1,4 +1,5 @@
-"""Time-based filter blocks: LPF, HPF (filters), LDLG, DEDT (process), decisions 0170-0171.
+"""Time-based filter blocks: LPF, HPF, NTCH, LDL2 (filters), LDLG, DEDT (process), decisions
+0170-0171 (LDLG is bilinear, as a real controller shows; see its docstring).
 
 Sources: 1756-RM006 (filter and process chapters) and the Studio 5000 v37 help of each block.
 - Structured Text calls the block on its tag; EnableIn is not read (decision 0063), the
@@ -263,25 +264,38 @@ _LDLG = block("LEAD_LAG")
 
 @implements("LDLG")
 def ldlg(ctx: ExecContext, rung: bool, s: list) -> None:
-    """Out = Gain x (1 + Lead s) / (1 + Lag s) x In + Bias, Lead and Lag in seconds
-    (decision 0171). A negative Lead or Lag sets LeadInv / LagInv and counts as 0; with no
-    lag (Lag 0) the lead cannot act and Out = Gain x In + Bias. Initialize: steady state on
-    InitialValue, Out = Gain x InitialValue + Bias."""
+    """Out = Gain x (1 + Lead s)/(1 + Lag s) x In + Bias, Lead and Lag in seconds,
+    discretised with the bilinear (Tustin) transform as the controller does (decision 0171):
+    y_n = ((DeltaT + 2 Lead) In_n + (DeltaT - 2 Lead) In_(n-1) - (DeltaT - 2 Lag) y_(n-1))
+    / (DeltaT + 2 Lag). A negative Lead sets LeadInv and counts as 0; a Lag below DeltaT/2
+    sets LagInv and counts as DeltaT/2. Initialize: steady state on InitialValue,
+    Out = Gain x InitialValue + Bias; the first execution after prescan: steady on In."""
     b = _LDLG
     dt = delta_t(ctx, s, b)
     clear_flags(s, b, "LEADINV", "LAGINV")
     if dt is not None:
         lead, lag = float(s[b["LEAD"]]), float(s[b["LAG"]])
-        s[b["LEADINV"]], s[b["LAGINV"]] = int(lead < 0.0), int(lag < 0.0)
-        lead, lag = max(lead, 0.0), max(lag, 0.0)
+        s[b["LEADINV"]] = int(lead < 0.0)
+        lead = max(lead, 0.0)
+        if dt > 0.0:
+            s[b["LAGINV"]] = int(lag < dt / 2.0)
+            lag = max(lag, dt / 2.0)
+        else:
+            s[b["LAGINV"]] = int(lag < 0.0)
         init = bool(s[b["INITIALIZE"]])
         u = float(s[b["INITIALVALUE"]] if init else s[b["IN"]])
-        if lag > 0.0:
-            y = run_filter(s, b, (lead / lag, 1.0 / lag), (1.0, 1.0 / lag), dt, u, init)
+        if init or not s[b["PRIMED"]]:
+            y = u  # steady state: DC gain 1
+            s[b["PRIMED"]], s[b["PREVIN"]], s[b["PREVOUT"]] = 1, u, y
+        elif dt > 0.0:
+            y = (
+                (dt + 2.0 * lead) * u
+                + (dt - 2.0 * lead) * s[b["PREVIN"]]
+                - (dt - 2.0 * lag) * s[b["PREVOUT"]]
+            ) / (dt + 2.0 * lag)
+            s[b["PREVIN"]], s[b["PREVOUT"]] = u, y
         else:
-            # no lag: a pure gain; a later Lag > 0 starts from the steady state (bumpless)
-            y = u
-            s[b["PRIMED"]] = 0
+            y = float(s[b["PREVOUT"]])  # no time has passed
         store_filtered(s, b, s[b["GAIN"]] * y + s[b["BIAS"]])
     finish(s, b)
 

@@ -218,47 +218,67 @@ def test_hpf_initialize_gives_zero_and_invalid_inputs(tmp_path: Path) -> None:
 
 
 # ------------------------------------------------------------------ LDLG
+# LDLG is bilinear (decision 0171): with p = (2 Lag - dt)/(2 Lag + dt) and a = dt/(dt + 2 Lag),
+# a unit step applied after a rest at 0 gives y_1 = a (1 + 0) and then
+# y_k = 2a + p y_(k-1), whose fixed point is 1: y_k = 1 - (1 - a) p^(k-1).
+
+
 def test_ldlg_pure_lag_with_gain_and_bias(tmp_path: Path) -> None:
     body = "f.Lag := 1.0; f.Gain := 2.0; f.Bias := 1.0;\n" + STEP + "LDLG(f);"
     rows = _run(tmp_path, "f : LEAD_LAG;", body, 6, ["f.Out", "f.Status"], 100.0)
     out = _col(rows, "f.Out")
     assert out[0] == 1.0  # steady state on In 0: 2 x 0 + 1
-    # 1/(1 + s) step, t = k x 0.1 s: Out = 2 (1 - e^(-t)) + 1
+    a, p = 0.1 / 2.1, 1.9 / 2.1  # dt 0.1 s, Lag 1 s
     for k in range(1, 6):
-        assert out[k] == pytest.approx(2 * (1 - math.exp(-0.1 * k)) + 1, rel=1e-6)
+        assert out[k] == pytest.approx(2 * (1 - (1 - a) * p ** (k - 1)) + 1, rel=1e-6)
     assert set(_ints(rows, "f.Status")) == {0}
 
 
+def test_ldlg_matches_the_coefficients_of_a_running_controller(tmp_path: Path) -> None:
+    # A running LDLG exported from a controller (FBDLevelControlSimulation.L5X in the real
+    # export corpus: Lag 5 s, Lead 0, DeltaT 0.1 s) keeps two internal coefficients
+    # 0.00990099 = dt/(dt + 2 Lag) and -0.980198 = (dt - 2 Lag)/(dt + 2 Lag): the bilinear
+    # form. One step of 1 from rest: y_1 = 0.00990099 (1 + 0) = 0.00990099.
+    body = "f.Lag := 5.0;\n" + STEP + "LDLG(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 3, ["f.Out"], 100.0)
+    a, p = 0.1 / 10.1, 9.9 / 10.1
+    assert _col(rows, "f.Out")[1:] == pytest.approx([a, 2 * a + p * a], rel=1e-6)
+
+
 def test_ldlg_lead_over_lag(tmp_path: Path) -> None:
-    body = "f.Lead := 2.0; f.Lag := 1.0; f.Gain := 1.0;\n" + STEP + "LDLG(f);"
-    rows = _run(tmp_path, "f : LEAD_LAG;", body, 6, ["f.Out"], 100.0)
+    body = "f.Lead := 2.0; f.Lag := 1.0;\n" + STEP + "LDLG(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 5, ["f.Out"], 100.0)
     out = _col(rows, "f.Out")
-    # (1 + 2s)/(1 + s) step: 1 + (Lead/Lag - 1) e^(-t/Lag) = 1 + e^(-t), t = k x 0.1 s
-    for k in range(1, 6):
-        assert out[k] == pytest.approx(1 + math.exp(-0.1 * k), rel=1e-6)
+    # y_1 = ((0.1 + 4) x 1 + (0.1 - 4) x 0 - (0.1 - 2) x 0)/2.1 = 4.1/2.1;
+    # then y_k = ((0.1 + 4) + (0.1 - 4) + 1.9 y_(k-1))/2.1 = (0.2 + 1.9 y_(k-1))/2.1,
+    # fixed point 1: y_k = 1 + (4.1/2.1 - 1) p^(k-1), p = 1.9/2.1
+    p = 1.9 / 2.1
+    for k in range(1, 5):
+        assert out[k] == pytest.approx(1 + (4.1 / 2.1 - 1) * p ** (k - 1), rel=1e-6)
 
 
-def test_ldlg_initialize_and_no_lag(tmp_path: Path) -> None:
+def test_ldlg_initialize(tmp_path: Path) -> None:
     body = (
         "f.Lag := 1.0; f.Gain := 3.0; f.Bias := -1.0; f.In := 4.0; f.InitialValue := 10.0;\n"
-        "f.Initialize := n = 2;\nIF n = 4 THEN f.Lag := 0.0; END_IF;\nLDLG(f);"
+        "f.Initialize := n = 2;\nLDLG(f);"
     )
-    rows = _run(tmp_path, "f : LEAD_LAG;", body, 4, ["f.Out"], 100.0)
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 3, ["f.Out"], 100.0)
     out = _col(rows, "f.Out")
     assert out[0] == 11.0  # steady on In 4: 3 x 4 - 1
-    assert out[1] == 29.0  # Initialize: 3 x 10 - 1
-    # from 10 towards In 4 for 0.1 s: 4 + 6 e^(-0.1), x 3 - 1
-    assert out[2] == pytest.approx(3 * (4 + 6 * math.exp(-0.1)) - 1, rel=1e-6)
-    assert out[3] == 11.0  # Lag 0: Out = Gain x In + Bias
+    assert out[1] == 29.0  # Initialize: 3 x 10 - 1, the lag at rest on 10
+    # from rest on 10, In 4: y = (0.1 x 4 + 0.1 x 10 + 1.9 x 10)/2.1 = 20.4/2.1; x 3 - 1
+    assert out[2] == pytest.approx(3 * 20.4 / 2.1 - 1, rel=1e-6)
 
 
-def test_ldlg_negative_time_constants_are_invalid(tmp_path: Path) -> None:
-    body = "f.Lead := -1.0; f.Lag := -2.0; f.Gain := 1.0; f.In := 5.0;\nLDLG(f);"
-    rows = _run(tmp_path, "f : LEAD_LAG;", body, 2, ["f.Out", "f.Status", "f.LeadInv",
+def test_ldlg_invalid_time_constants(tmp_path: Path) -> None:
+    # Lead -1: LeadInv (bit 1), taken as 0. Lag 0 < dt/2 = 0.05: LagInv (bit 2), taken as
+    # 0.05: y = (0.1 u_n + 0.1 u_(n-1) - 0 y)/0.2, the mean of the last two inputs.
+    body = "f.Lead := -1.0; f.Lag := 0.0; f.In := 10.0 * n;\nLDLG(f);"
+    rows = _run(tmp_path, "f : LEAD_LAG;", body, 3, ["f.Out", "f.Status", "f.LeadInv",
                 "f.LagInv"], 100.0)  # fmt: skip
-    assert _ints(rows, "f.Status") == [7, 7]  # LeadInv bit 1, LagInv bit 2, fault bit 0
-    assert rows[1]["f.LeadInv"] == "1" and rows[1]["f.LagInv"] == "1"
-    assert _col(rows, "f.Out") == [5.0, 5.0]  # both taken as 0: Out = In
+    assert _ints(rows, "f.Status") == [3, 7, 7]  # scan 1 (DeltaT 0): Lag 0 is not below 0
+    assert rows[2]["f.LeadInv"] == "1" and rows[2]["f.LagInv"] == "1"
+    assert _col(rows, "f.Out") == pytest.approx([10.0, 15.0, 25.0])
 
 
 # ------------------------------------------------------------------ DEDT
