@@ -426,3 +426,23 @@ def test_a_change_of_order_reinitialises(tmp_path: Path) -> None:
     rows = _run(tmp_path, "f : FILTER_NOTCH;", body, 4, ["f.Out", "f.Status"], 10.0)
     assert _col(rows, "f.Out") == pytest.approx([2.0] * 4, rel=1e-6)
     assert set(_ints(rows, "f.Status")) == {0}
+
+
+def test_exact_at_the_high_frequency_limit() -> None:
+    # 1 ms periodic task, third-order LPF at its highest valid WLag 0.36 / 0.001 = 360 rad/s:
+    # the samples still follow 1 - e^(-w t) - (2/sqrt3) e^(-w t/2) sin(sqrt3 w t/2)
+    ix = struct_type("FILTER_LOW_PASS").index
+    s = new_struct("FILTER_LOW_PASS", WLag=360.0, Order=3)
+    ctx = ExecContext(task_period_ms=1.0)
+    fb.lpf(ctx, True, s)  # initialises on In 0
+    s[ix["IN"]] = 1.0
+    for k in range(1, 11):
+        fb.lpf(ctx, True, s)
+        t = 0.001 * k
+        want = (
+            1
+            - math.exp(-360 * t)
+            - 2 / math.sqrt(3) * math.exp(-180 * t) * math.sin(math.sqrt(3) * 180 * t)
+        )
+        assert s[ix["OUT"]] == pytest.approx(want, abs=1e-6)
+    assert s[ix["STATUS"]] == 0
