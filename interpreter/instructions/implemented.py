@@ -117,6 +117,7 @@ IMPLEMENTED = frozenset(
         "MATC",
         "MAW",
         "MAXC",
+        "MCCD",
         "MCCM",
         "MCCP",
         "MCD",
