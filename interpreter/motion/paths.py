@@ -442,18 +442,20 @@ class PathSet:
             self._finish(cs, mv, events)
 
     def replan(self, r: PathMove, lim: Limits) -> None:
-        """MCCD: the running row continues from its present path position and speed with
-        the limits lim, to the same end point. Planned from acceleration 0, as MCD does
-        (decision 0103). A row that could no longer come to rest by its end point with
-        lim (it is in its final deceleration and the new decel or jerk is lower) keeps
-        the profile it runs: the path never runs past its end."""
+        """MCCD: the running row continues from its present path position, speed and
+        acceleration with the limits lim, to the same end point (an S-curve first brings
+        its acceleration to 0 at the jerk: profiles.plan_move). A row that could no longer
+        come to rest by its end point with lim (in its final deceleration, with a lower
+        decel or jerk) keeps the profile it runs: the path never runs past its end."""
         self.changed()  # the row's latest state is in the object from here
         remaining = r.segment.length - r.s
-        if change_distance(r.v, 0.0, lim) > remaining + 1e-12:
-            r.limits = lim  # a later queued move still sees the changed values
+        prof = plan_move(remaining, lim, r.v, r.a)
+        if len(prof.p0) > 1 and float(prof.p0[:-1].max()) > remaining + 1e-9 * max(
+            1.0, r.segment.length
+        ):
             return
         r.limits = lim
-        r.use_profile(plan_move(remaining, lim, r.v))
+        r.use_profile(prof)
         r.s0, r.n = r.s, 0
         r.a = float(r.coef[0, 3]) if r.duration > 0.0 else 0.0
         r.blend_s = _blend_point(r)

@@ -157,6 +157,29 @@ def test_s_curve_accel_jerk_in_percent_of_time_uses_the_new_speed(mp) -> None:
     assert math.sqrt(10 * 500) * CUP * 0.95 <= step <= math.sqrt(10 * 500) * CUP + 1e-4
 
 
+def test_a_change_during_an_s_curve_ramp_keeps_the_acceleration_continuous(mp) -> None:
+    # S-curve at 100 % of Time: J = A^2/V = 1000 both ways. MCCD at 0.05 s (speed 20) takes
+    # effect at 0.052, 0.05 s into the first jerk phase: a = J t = 50, v = J t^2/2 = 1.25,
+    # s = J t^3/6 = 0.0208333. The acceleration first goes back to 0 at J: 0.05 s, v gains
+    # a^2/(2J) = 1.25 (to 2.5) over 1.25*0.05 + 50*0.05^2/2 - J*0.05^3/6 = 0.1041667.
+    # Then 2.5 -> 20: dv 17.5 >= A^2/J = 10 reaches A: dv/A + A/J = 0.275 s over
+    # (2.5 + 20)/2 * 0.275 = 3.09375; 20 -> 0 at the decel jerk 1000: 0.3 s over 3.
+    # Cruise (50 - 0.0208333 - 0.1041667 - 3.09375 - 3) / 20; PC at 0.052 + 0.05 + 0.275 +
+    # cruise + 0.3.
+    body = once(mclm("c1", "p1", shape="s-curve")) + at_scan(50, mccd("c2", speed=20.0))
+    tr = mp.trace(prog("", body), ["XY.VectorCommandVelocity", "c1.PC"], scans=3000)
+    cruise = (50 - 0.0208333 - 0.1041667 - 3.09375 - 3) / 20
+    assert_completes(tr, "c1", 0.052 + 0.05 + 0.275 + cruise + 0.3)
+    # the speed per update; its second difference is the jerk: at most J CUP^2 = 0.004
+    # (a step of the acceleration from 50 to 0 would show 0.1)
+    v = [r for t, r in zip(tr.time(), tr.col("XY.VectorCommandVelocity"), strict=True)
+         if round(t / CUP, 6).is_integer()]  # fmt: skip
+    second = [abs(v[i + 1] - 2 * v[i] + v[i - 1]) for i in range(1, len(v) - 1)]
+    assert max(second) <= 1000.0 * CUP * CUP + 1e-4
+    # the speed after the acceleration is back to 0 (0.102 s): 2.5
+    assert tr.at(0.102, "XY.VectorCommandVelocity") == pytest.approx(2.5, abs=1e-4)
+
+
 def test_a_trapezoidal_move_ignores_jerk_changes(mp) -> None:
     # L/V + V/A = 5.1 s as if no MCCD ran
     body = once(mclm("c1", "p1")) + at_scan(1000, mccd(aj=5.0, dj=5.0))
