@@ -235,3 +235,25 @@ def test_an_enumeration_literal_out_of_range_fails_verification(mp, index: int) 
     code, out, err = mp.run(prog("", once("MCCD(" + ", ".join(parts) + ");")), ["--scans", "1"])
     assert code != 0
     assert "E109" in out + err
+
+
+LADDER = """VAR
+  X, Y : AXIS_VIRTUAL;
+  XY : COORDINATE_SYSTEM := (Axes := [X, Y], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2 : MOTION_INSTRUCTION;
+  p : REAL[2] := [30.0, 40.0];
+  k : DINT;
+END_VAR
+EQU(k,0)MCLM(XY,c1,Absolute,p[0],10,Units per sec,100,Units per sec2,100,Units per sec2,Trapezoidal,100.0,100.0,% of Time,No Settle,Disabled,Programmed,0,0,None,0,0);
+EQU(k,1000)MCCD(XY,c2,Coordinated Move,Yes,20,Units per sec,No,0,Units per sec2,Yes,50,Units per sec2,No,0,No,0,Units per sec3,Active and Pending Motion);
+ADD(k,1,k);
+"""
+
+
+def test_ladder_mccd_with_the_enumeration_texts(mp) -> None:
+    # at 1.002 s = 9.5; 10 -> 20 at the unchanged 100: 0.1 s over 1.5; 20 -> 0 at the new
+    # decel 50: 0.4 s over 4; cruise (50 - 9.5 - 5.5) / 20 = 1.75 s: PC at 1.002 + 2.25
+    tr = mp.trace(LADDER, ["c1.PC", "c2.DN", "c2.ER", "X.CommandPosition"], 3400, name="prog.rll")
+    assert [tr.at(1.0, "c2.DN"), tr.at(1.0, "c2.ER")] == [1, 0]
+    assert_completes(tr, "c1", 1.002 + 0.1 + 1.75 + 0.4)
+    assert tr.col("X.CommandPosition")[-1] == 30.0
