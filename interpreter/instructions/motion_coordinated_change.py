@@ -83,19 +83,16 @@ def mccd(
         (change_accel_jerk, accel_jerk, jerk_units, _ACCEL_JERK, _JERK_UNITS, "MaximumAccelJerk"),
         (change_decel_jerk, decel_jerk, jerk_units, _DECEL_JERK, _JERK_UNITS, "MaximumDecelJerk"),
     )  # fmt: skip
-    # the enumerations first (a literal out of range is a verification error; these catch
-    # values from tags), in faceplate order
-    for flag, _, units, (i_flag, _, i_units), allowed, _ in ops:
-        if whole(flag) not in _CHANGE:
-            fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, i_flag)
-            return
-        if whole(units) not in allowed:
-            fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, i_units)
+    # the enumerations first, the lowest faceplate index reported (a literal out of range is
+    # a verification error; these catch what gets past it)
+    checks = [(i_flag, flag, _CHANGE) for flag, _, _, (i_flag, _, _), _, _ in ops]
+    checks += [(i_units, units, ok) for _, _, units, (_, _, i_units), ok, _ in ops]
+    checks.append((_SCOPE, scope, _SCOPES))
+    for i_enum, given, allowed in sorted(checks, key=lambda c: c[0]):
+        if whole(given) not in allowed:
+            fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, i_enum)
             return
     sc = whole(scope)
-    if sc not in _SCOPES:
-        fail(rt, ctl, MotionError.PARAMETER_OUT_OF_RANGE, _SCOPE)
-        return
     changed = [whole(flag) == _YES for flag, *_ in ops]
     if any(whole(op[2]) in _MASTER_UNITS for op, c in zip(ops, changed, strict=True) if c):
         # master-driven units for a move that runs in time (decision 0185)

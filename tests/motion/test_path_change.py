@@ -117,3 +117,23 @@ def test_nothing_running_is_left_alone() -> None:
     assert g.change_path_dynamics(cs, 5.0, 10.0, 10.0, None, None, True).ok
     assert run(g, 3) == []
     assert list(g.command_position) == [0.0, 0.0]
+
+
+def test_a_move_held_at_speed_0_does_not_blend_into_the_queued_one() -> None:
+    # termination 3 blends at the final deceleration; a move stopped by speed 0 never gets
+    # there: the queued move waits until the speed comes back. At clock 0.3 (s = 2.5)
+    # speed 0 stops it after 10^2/200 = 0.5, at s = 3 (a rest 10 short of the end)
+    g, cs, first, second = _start(tt=3, queued=Limits(10.0, 100.0, 100.0))
+    assert second is not None
+    run(g, 300)
+    g.change_path_dynamics(cs, 0.0, None, None, None, None, False)
+    events = run(g, 2000)
+    assert not [e for e in events if e[1] == second.handle]
+    assert list(g.command_position) == pytest.approx([5.0 / 13.0 * 3.0, 12.0 / 13.0 * 3.0])
+    # speed 10 again at clock 2.3: 10 left, 0.1 s up over 0.5, 0.9 s at 10, 0.1 s down:
+    # done at 3.4; the queued move (L 13, 1.4 s) starts at the decel point, 3.3, ends 4.7
+    g.change_path_dynamics(cs, 10.0, None, None, None, None, False)
+    events = run(g, 2500)
+    assert _completed(events, first.handle) == [pytest.approx(3.4)]
+    assert _completed(events, second.handle) == [pytest.approx(4.7)]
+    assert list(g.command_position) == [10.0, 24.0]
