@@ -51,6 +51,9 @@ SIGNATURES = [
     ("MDCC", ["SlaveSystem", "MasterAxis", "MotionControl", "MasterReference", "NominalMasterVelocity"]),
     ("MCPM", ["CoordinateSystem", "MotionControl", "Path", "Length", "Dynamics", "LockPosition", "LockDirection"]),
     ("MCTO", ["CartesianSystem", "RobotSystem", "MotionControl", "WorkFrame", "ToolFrame"]),
+    ("MCCD", ["CoordinateSystem", "MotionControl", "MotionType", "ChangeSpeed", "Speed", "SpeedUnits",
+              "ChangeAccel", "AccelRate", "AccelUnits", "ChangeDecel", "DecelRate", "DecelUnits",
+              "ChangeAccelJerk", "AccelJerk", "ChangeDecelJerk", "DecelJerk", "JerkUnits", "Scope"]),
 ]  # fmt: skip
 
 

@@ -124,6 +124,7 @@ IMPLEMENTED = frozenset(
         "MATC",
         "MAW",
         "MAXC",
+        "MCCD",
         "MCCM",
         "MCCP",
         "MCD",

@@ -473,7 +473,7 @@ def mcs(
     set_bits(ctl, DN=1, IP=1)
 
 
-@prescan("MCLM", "MCCM", "MCS")
+@prescan("MCLM", "MCCM", "MCS", "MCCD")
 def _prescan(ctx: ExecContext, rung: bool, cs: list, ctl: list, *rest: object) -> None:
     """Prescan clears the control bits and binds the system, so its tag shows the
     positions and status from the first scan on."""

@@ -63,6 +63,7 @@ from interpreter.motion.outputcams import (
 )
 from interpreter.motion.path_moves import (
     add_coordinate_system,
+    change_path_dynamics,
     path_start_point,
     start_path,
     stop_path,
@@ -244,6 +245,7 @@ class MotionGroup:
     path_start_point = path_start_point
     start_path = start_path
     stop_path = stop_path
+    change_path_dynamics = change_path_dynamics
 
     def stop_requested(self, axis: int | None, stop_type: StopType) -> None:
         """A MAS (axis) or MGS (None) was executed: sets release what a stop frees at once."""

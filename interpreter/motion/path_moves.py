@@ -9,6 +9,7 @@ group as its first argument; MotionGroup binds them as methods of the same name 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -140,6 +141,59 @@ def stop_path(
         if stop_all:
             for ax in cs.axes:
                 group.stop(ax, StopType.ALL)
+
+    group.after_update(apply)
+    return StartResult(handle=h)
+
+
+# a jerk operand resolved per move: (rate it shapes, the move's speed) -> jerk in units/s^3
+# (% of Time depends on both; units and % of maximum ignore them)
+JerkOf = Callable[[float, float], float]
+
+
+def change_path_dynamics(
+    group: MotionGroup,
+    cs_id: int,
+    speed: float | None,
+    accel: float | None,
+    decel: float | None,
+    accel_jerk: JerkOf | None,
+    decel_jerk: JerkOf | None,
+    pending: bool,
+) -> StartResult:
+    """MCCD: at the next update the active coordinated move of the system is planned again
+    from its present path position and speed with the changed limits (None: unchanged) and
+    keeps its end point and termination; pending: the queued move takes them too. Jerks
+    only change S-curve moves. A system with nothing running (or stopping) is left as is."""
+    h = group.new_handle()
+    paths = group.paths
+    cs = paths.systems[cs_id]
+
+    def new_limits(old: Limits) -> Limits:
+        lim = replace(
+            old,
+            speed=old.speed if speed is None else speed,
+            accel=old.accel if accel is None else accel,
+            decel=old.decel if decel is None else decel,
+        )
+        if math.isinf(old.accel_jerk) and math.isinf(old.decel_jerk):
+            return lim  # trapezoidal: no jerk to change
+        return replace(
+            lim,
+            accel_jerk=lim.accel_jerk if accel_jerk is None else accel_jerk(lim.accel, lim.speed),
+            decel_jerk=lim.decel_jerk if decel_jerk is None else decel_jerk(lim.decel, lim.speed),
+        )
+
+    def apply(ev: Events) -> None:
+        paths._sync_out()
+        lead = cs.lead
+        if lead is not None and cs.stop == 0 and lead.owner == lead.handle:
+            if not lead.settling:  # settling: its path is done, nothing left to change
+                paths.replan(lead, new_limits(lead.limits))
+        if pending:
+            for q in cs.queue:
+                q.limits = new_limits(q.limits)
+        paths.changed()
 
     group.after_update(apply)
     return StartResult(handle=h)

@@ -441,6 +441,25 @@ class PathSet:
         if mv.segment.length <= _EPS and mv.duration <= 0.0:
             self._finish(cs, mv, events)
 
+    def replan(self, r: PathMove, lim: Limits) -> None:
+        """MCCD: the running row continues from its present path position, speed and
+        acceleration with the limits lim, to the same end point (an S-curve first brings
+        its acceleration to 0 at the jerk: profiles.plan_move). A row that could no longer
+        come to rest by its end point with lim (in its final deceleration, with a lower
+        decel or jerk) keeps the profile it runs: the path never runs past its end."""
+        self.changed()  # the row's latest state is in the object from here
+        remaining = r.segment.length - r.s
+        prof = plan_move(remaining, lim, r.v, r.a)
+        if len(prof.p0) > 1 and float(prof.p0[:-1].max()) > remaining + 1e-9 * max(
+            1.0, r.segment.length
+        ):
+            return
+        r.limits = lim
+        r.use_profile(prof)
+        r.s0, r.n = r.s, 0
+        r.a = float(r.coef[0, 3]) if r.duration > 0.0 else 0.0
+        r.blend_s = _blend_point(r)
+
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         vel, acc = np.zeros(n), np.zeros(n)
         self._sync_out()
@@ -597,6 +616,18 @@ def _blend_point(mv: PathMove) -> float:
     if mv.termination in _AT_DECEL_POINT:
         pr = mv.profile
         assert pr is not None
-        peak = float(np.max(np.abs(pr.v0))) if len(pr.v0) else 0.0
-        return max(length - change_distance(peak, 0.0, mv.limits), 0.0)
+        if not math.isfinite(pr.duration):
+            return math.inf  # speed 0 (MCCD): it dwells short of its end
+        return max(length - change_distance(_decel_speed(pr), 0.0, mv.limits), 0.0)
     return math.inf
+
+
+def _decel_speed(pr: MoveProfile) -> float:
+    """Speed where the profile's final deceleration to rest begins: the start of its last
+    stretch of strictly falling segment speeds (the peak of a profile from rest; after an
+    MCCD the lower new speed, not the speed it was running at)."""
+    v = np.abs(pr.v0)
+    k = len(v) - 1  # the last row is the rest at the end
+    while k > 0 and v[k - 1] > v[k] + 1e-12:
+        k -= 1
+    return float(v[k]) if len(v) else 0.0

@@ -229,18 +229,28 @@ def _bisect_peak(v0: float, lo: float, hi: float, distance: float, lim: Limits) 
     return 0.5 * (lo + hi)
 
 
-def plan_move(distance: float, lim: Limits, v0: float = 0.0) -> MoveProfile:
+def plan_move(distance: float, lim: Limits, v0: float = 0.0, a0: float = 0.0) -> MoveProfile:
     """Move by `distance` starting at velocity v0 (merge), ending at rest at exactly `distance`.
 
     A move with speed 0 dwells: it comes to rest and stays in process without reaching its
     target (Logix pauses such a move rather than completing it).
+    a0: the acceleration at the start (a dynamics change in the middle of an S-curve ramp);
+    with a finite jerk it is first brought to 0 at that jerk (accel jerk while speeding
+    up, decel jerk while slowing down), so the acceleration stays continuous; the rest is
+    planned from there. Trapezoidal limits ignore it (their acceleration steps anyway).
     """
     b = _Builder()
     b.v = v0
-    if lim.speed <= 0.0 and abs(distance) > _EPS:
+    if a0 != 0.0:
+        speeding_up = a0 * (v0 if v0 != 0.0 else a0) > 0.0
+        jerk = lim.accel_jerk if speeding_up else lim.decel_jerk
+        if math.isfinite(jerk) and jerk > 0.0:
+            b.phase(abs(a0) / jerk, a0, -math.copysign(jerk, a0))
+            b.a = 0.0  # the phase ends at 0 in theory; drop the rounding
+    if lim.speed <= 0.0 and abs(distance - b.p) > _EPS:
         b.velocity_change(0.0, lim)
         return b.finish(None, 0.0, forever=True)
-    _plan_into(b, distance, lim)
+    _plan_into(b, distance - b.p, lim)  # the rest, from acceleration 0
     return b.finish(distance, 0.0)
 
 

@@ -128,6 +128,8 @@ def test_no_operands() -> None:
         "Units per sec",
         "% of Time-Master Driven",
         "Immediate Forward Only",
+        "Active and Pending Motion",  # MCCD Scope: `and` between words (decision 0185)
+        "Send Message to Linked Phase and Wait",
     ],
 )
 def test_enumeration_words_with_spaces(text: str) -> None:
@@ -158,6 +160,15 @@ def test_keyword_operators_are_not_enumeration_words() -> None:
     assert isinstance(e.left, n.Binary) and e.left.op == "AND"
     assert isinstance(e.left.right, n.Unary) and e.left.right.op == "NOT"
     assert isinstance(e.right, n.Binary) and e.right.op == "="
+
+
+def test_a_and_b_stays_an_expression() -> None:
+    # only a blank-joined pair of words on one side of `and` makes an enumeration text
+    (cmp_,) = rung("CMP(a and b)").elements
+    e = cmp_.operands[0]
+    assert isinstance(e, n.Binary) and e.op == "AND"
+    (cmp_,) = rung("CMP(a - b and c)").elements
+    assert isinstance(cmp_.operands[0], n.Binary) and cmp_.operands[0].op == "AND"
 
 
 def test_expression_operands_use_st_nodes() -> None:
