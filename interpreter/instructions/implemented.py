@@ -164,6 +164,7 @@ IMPLEMENTED = frozenset(
         "OSR",
         "OSRI",
         "PID",
+        "PIDE",
         "RAD@rll",
         "RAD@st",
         "RES",
