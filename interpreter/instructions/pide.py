@@ -113,12 +113,16 @@ def _set_mode(s: list, mode: str) -> None:
 
 def _requests(s: list) -> None:
     """Program/Operator control, then the mode, from the request bits (decision 0190)."""
+    # program requests before operator requests; of two requests from the same side,
+    # Operator control wins
     if _b(s, "PROGOPERREQ"):
         _set(s, "PROGOPER", False)
-    elif _b(s, "PROGPROGREQ") or _b(s, "OPERPROGREQ"):
+    elif _b(s, "PROGPROGREQ"):
         _set(s, "PROGOPER", True)
     elif _b(s, "OPEROPERREQ"):
         _set(s, "PROGOPER", False)
+    elif _b(s, "OPERPROGREQ"):
+        _set(s, "PROGOPER", True)
     mode = _mode(s)
     if _b(s, "PROGHANDREQ"):
         mode = "HAND"
@@ -188,16 +192,14 @@ def _setpoint(s: list, mode: str, pv: float) -> float:
     _set(s, "RATIOHALARM", raw_ratio > rh)
     _set(s, "RATIOLALARM", raw_ratio < rl)
     _set(s, "RATIO", f32(ratio))
-    limits_ok = not (_b(s, "SPLIMITSINV") or _b(s, "PVSPANINV"))
-    spl, sph = _g(s, "SPLLIMIT"), _g(s, "SPHLIMIT")
-    lo, hi = (spl, sph) if limits_ok else (-math.inf, math.inf)
+    # a high limit below the low limit counts as the low limit (SPLimitsInv is set)
+    lo = _g(s, "SPLLIMIT")
+    hi = max(_g(s, "SPHLIMIT"), lo)
     source = "SPPROG" if prog else "SPOPER"
     if _b(s, "PVTRACKING") and mode in ("MANUAL", "OVERRIDE", "HAND"):
         _set(s, source, f32(pv))  # the setpoint in use follows PV: bumpless back to Auto
     if mode == "CASRAT":
-        sp = _g(s, "SPCASCADE")
-        if limits_ok:
-            sp = _checked(s, sp, _g(s, "PVEUMIN"), _g(s, "PVEUMAX"), "SPCASCADEINV")
+        sp = _checked(s, _g(s, "SPCASCADE"), lo, hi, "SPCASCADEINV")
         if _b(s, "USERATIO"):
             sp *= ratio
         _set(s, "SPHALARM", sp > hi)
@@ -395,18 +397,18 @@ def _execute(s: list, dt: float | None, first: bool) -> None:
         for flag in ("CVHALARM", "CVLALARM", "CVROCALARM"):
             s[M[flag]] = 0
     elif mode == "HAND":
-        hand_fb = _checked(s, _g(s, "HANDFB"), 0.0, 100.0, "HANDFBINV")
-        cv = prev if _b(s, "HANDFBFAULTED") else hand_fb
+        _checked(s, _g(s, "HANDFB"), 0.0, 100.0, "HANDFBINV")
+        cv = prev if _b(s, "HANDFBFAULTED") else _g(s, "HANDFB")
         cv = _limit_cv(s, cv, prev, step, False)
     elif mode == "OVERRIDE":
-        cv_over = _checked(s, _g(s, "CVOVERRIDE"), 0.0, 100.0, "CVOVERRIDEINV")
-        cv = _limit_cv(s, cv_over, prev, step, False)
+        _checked(s, _g(s, "CVOVERRIDE"), 0.0, 100.0, "CVOVERRIDEINV")
+        cv = _limit_cv(s, _g(s, "CVOVERRIDE"), prev, step, False)
     elif mode == "MANUAL":
         man_lim = _b(s, "CVMANLIMITING")
         lo, hi = _cv_limits(s) if man_lim else (0.0, 100.0)
         source = "CVPROG" if prog else "CVOPER"
-        cv = _checked(s, _g(s, source), lo, hi, source + "INV")
-        cv = _limit_cv(s, cv, prev, step, man_lim)
+        _checked(s, _g(s, source), lo, hi, source + "INV")
+        cv = _limit_cv(s, _g(s, source), prev, step, man_lim)  # alarms on the asked value
     else:
         cv = prev + (0.0 if zc else delta) + (ff - last_ff)
         if cv_ok:  # windup inputs are ignored while the output is faulted
@@ -438,17 +440,14 @@ def _execute(s: list, dt: float | None, first: bool) -> None:
     if mode == "CASRAT" and not prog:
         _set(s, "SPOPER", s[M["SP"]])  # back to Auto from Cascade/Ratio without a bump
     _set(s, "INITPRIMARY", mode != "CASRAT" or initializing)
+    # the windup outputs tell a primary loop that this loop cannot take its PV further up
+    # (or down): its SP is at a limit, or its CV is at the limit that moves PV that way
     reverse = not _b(s, "CONTROLACTION")  # CV up drives PV up
-    _set(
-        s,
-        "WINDUPHOUT",
-        _b(s, "SPHALARM") or (_b(s, "CVHALARM") if reverse else _b(s, "CVLALARM")),
-    )
-    _set(
-        s,
-        "WINDUPLOUT",
-        _b(s, "SPLALARM") or (_b(s, "CVLALARM") if reverse else _b(s, "CVHALARM")),
-    )
+    windup = cv_ok and not initializing
+    up = _b(s, "SPHALARM") or (_b(s, "CVHALARM") if reverse else _b(s, "CVLALARM"))
+    down = _b(s, "SPLALARM") or (_b(s, "CVLALARM") if reverse else _b(s, "CVHALARM"))
+    _set(s, "WINDUPHOUT", windup and up)
+    _set(s, "WINDUPLOUT", windup and down)
 
 
 def _pack_status(s: list) -> None:

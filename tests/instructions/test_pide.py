@@ -407,3 +407,131 @@ def test_setpoint_limits_and_alarms(tmp_path: Path) -> None:
     assert bits(rows, "SPHAlarm") == [1, 0, 0]
     assert bits(rows, "SPLAlarm") == [0, 1, 0]
     assert num(rows, "Status1") == [65, 65, 0]
+
+
+def test_program_operator_precedence(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0;\n"
+        "p.ProgProgReq := n = 1 OR n = 2; p.ProgOperReq := n = 2;\n"  # both: Operator wins
+        "p.OperProgReq := n = 3 OR n = 4; p.OperOperReq := n = 4;\n"
+        "p.OperOperReq := p.OperOperReq OR n = 5; p.ProgProgReq := p.ProgProgReq OR n = 5;\n"
+        "PIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 5, ["ProgOper"])
+    # 1 Program; 2 ProgOperReq beats ProgProgReq; 3 the operator asks for Program; 4 the
+    # operator asks for both: Operator; 5 ProgProgReq beats the operator's OperOperReq
+    assert bits(rows, "ProgOper") == [1, 0, 1, 0, 1]
+
+
+def test_pv_tracking_in_manual(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0; p.PVTracking := 1; p.PGain := 1.0;\n"
+        "p.CVInitValue := 20.0; p.OperAutoReq := n = 3;\n"
+        "IF n = 1 THEN p.SPOper := 70.0; END_IF;\n"
+        "CASE n OF 1: p.PV := 40.0; 2: p.PV := 42.0; 3, 4: p.PV := 43.0; END_CASE;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 4, ["SP", "SPOper", "E", "CV", "Auto"])
+    # Operator Manual: SP and SPOper follow PV (40, 42); scan 3 Auto with SP left at 42:
+    # E = 42 - 43 = -1 (E(n-1) was 0): dCV = 1 x -1 -> CV 19; scan 4 unchanged
+    assert num(rows, "SP") == [40.0, 42.0, 42.0, 42.0]
+    assert num(rows, "SPOper") == [40.0, 42.0, 42.0, 42.0]
+    assert num(rows, "E") == [0.0, 0.0, -1.0, -1.0]
+    assert num(rows, "CV") == [20.0, 20.0, 19.0, 19.0]
+
+
+def test_pv_rate_of_change_alarms(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0; p.PVROCPeriod := 2.0;\n"
+        "p.PVROCPosLimit := 3.0; p.PVROCNegLimit := 4.0;\n"
+        "CASE n OF 1: p.PV := 10.0; 2: p.PV := 14.0; 3: p.PV := 17.0; 4: p.PV := 18.0;\n"
+        "5: p.PV := 19.0; 6: p.PV := 15.0; 7: p.PV := 10.0; END_CASE;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 7, ["PVROCPosAlarm", "PVROCNegAlarm"])
+    # periods of 2 s from scan 1 (PV 10): at scan 3 (17 - 10) / 2 = 3.5 >= 3 -> positive
+    # alarm; at scan 5 (19 - 17) / 2 = 1 -> cleared; at scan 7 (10 - 19) / 2 = -4.5 <= -4
+    assert bits(rows, "PVROCPosAlarm") == [0, 0, 1, 1, 0, 0, 0]
+    assert bits(rows, "PVROCNegAlarm") == [0, 0, 0, 0, 0, 0, 1]
+
+
+def test_real_time_sampling_computes_only_on_new_stamps(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 2; p.RTSTime := 100; p.IGain := 60.0; p.CVInitValue := 10.0;\n"
+        "p.SPProg := 50.0; p.PV := 40.0;\n"
+        + AUTO_PROG
+        + "CASE n OF 1, 2: p.RTSTimeStamp := 1000; 3: p.RTSTimeStamp := 1100;\n"
+        "4: p.RTSTimeStamp := 1300; END_CASE;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 4, ["CV", "DeltaT", "RTSMissed", "Status2"])
+    # scan 1 first stamp (DeltaT 0, initialisation 10); scan 2 same stamp: not executed;
+    # scan 3 100 ms: +1 x 10 x 0.1 = 1 -> 11; scan 4 200 ms > RTSTime: RTSMissed
+    # (Status2 bit 28 = 268435456), +1 x 10 x 0.2 = 2 -> 13
+    assert num(rows, "CV") == pytest.approx([10.0, 10.0, 11.0, 13.0])
+    assert num(rows, "DeltaT") == pytest.approx([0.0, 0.0, 0.1, 0.2])
+    assert bits(rows, "RTSMissed") == [0, 0, 0, 1]
+    assert num(rows, "Status2") == [0, 0, 0, 268435456]
+
+
+def test_manual_limiting_and_hand_feedback_fault(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0; p.CVHLimit := 70.0; p.CVROCLimit := 20.0;\n"
+        "p.CVManLimiting := n <= 3; p.HandFB := 30.0; p.ProgHandReq := n >= 4;\n"
+        "p.HandFBFault := n = 5;\n"
+        "CASE n OF 1: p.CVOper := 10.0; 2, 3: p.CVOper := 90.0; END_CASE;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 5, ["CV", "CVHAlarm", "CVROCAlarm", "Status1"])
+    # scan 1 initialisation (CVInitValue 0, so CVOper 0 too); scan 2: the operator asks 90,
+    # above CVHLimit 70 (CVOperInv, Status1 bit 13 + bit 0 = 8193) and at most 20 %/s x 1 s
+    # from 0: 20; scan 3 (CVOper 90 again): 40. Scan 4 Hand: HandFB 30, no ROC limit in
+    # Hand; scan 5 HandFBFault (Status1 bit 3 + bit 0 = 9): CV held at 30
+    assert num(rows, "CV") == [0.0, 20.0, 40.0, 30.0, 30.0]
+    assert bits(rows, "CVHAlarm") == [0, 1, 1, 0, 0]
+    assert bits(rows, "CVROCAlarm") == [0, 1, 1, 0, 0]
+    assert num(rows, "Status1") == [0, 8193, 8193, 0, 9]
+
+
+def test_ratio_limits_and_cascade_setpoint_invalid(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0; p.AllowCasRat := 1; p.UseRatio := 1;\n"
+        "p.RatioHLimit := 2.0; p.RatioLLimit := 0.5; p.OperCasRatReq := 1;\n"
+        "CASE n OF 1: p.RatioOper := 3.0; p.SPCascade := 40.0;\n"
+        "2: p.RatioOper := 1.0; p.SPCascade := 120.0; END_CASE;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 2, ["SP", "Ratio", "RatioHAlarm", "SPHAlarm", "Status1"])
+    # scan 1: ratio 3 limited to 2 (RatioHAlarm, RatioOperInv bit 10): SP = 40 x 2 = 80;
+    # Status1 = 1024 + 1 = 1025. Scan 2: SPCascade 120 above SPHLimit 100: SPCascadeInv
+    # (bit 7) and limited to 100: SP = 100 x 1 = 100; Status1 = 128 + 1 = 129
+    assert num(rows, "Ratio") == [2.0, 1.0]
+    assert num(rows, "SP") == [80.0, 100.0]
+    assert bits(rows, "RatioHAlarm") == [1, 0]
+    assert bits(rows, "SPHAlarm") == [0, 0]
+    assert num(rows, "Status1") == [1025, 129]
+
+
+def test_reversed_cv_span(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0; p.CVEUMin := 100.0; p.CVEUMax := 0.0;\n"
+        "p.CVInitValue := 75.0; p.CVOper := 40.0;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 2, ["CV", "CVEU"])
+    # CVInitValue 75 on 100..0 is (75 - 100) x 100 / (0 - 100) = 25 %; then CVOper 40 %
+    # -> CVEU = 100 + 40 x (0 - 100) / 100 = 60
+    assert num(rows, "CV") == [25.0, 40.0]
+    assert num(rows, "CVEU") == [75.0, 60.0]
+
+
+def test_prescan_makes_the_next_execution_a_first_scan() -> None:
+    from interpreter.instructions.pide import pide, pide_prescan
+    from interpreter.vm.context import ExecContext
+    from tests.instructions.structs import new_struct, struct_type
+
+    ix = struct_type("PID_ENHANCED").index
+    s = new_struct("PID_ENHANCED", TimingMode=1, OversampleDT=1.0, CVInitValue=30.0, CVOper=55.0)
+    ctx = ExecContext()
+    pide(ctx, True, s)
+    assert (s[ix["CV"]], s[ix["CVINITIALIZING"]], s[ix["ENABLEOUT"]]) == (30.0, 1, 1)
+    s[ix["CVOPER"]] = 55.0
+    pide(ctx, True, s)
+    assert (s[ix["CV"]], s[ix["CVINITIALIZING"]]) == (55.0, 0)  # Operator Manual
+    pide_prescan(ctx, False, s)
+    pide(ctx, True, s)
+    assert (s[ix["CV"]], s[ix["CVINITIALIZING"]]) == (30.0, 1)  # initialised again
