@@ -535,3 +535,19 @@ def test_prescan_makes_the_next_execution_a_first_scan() -> None:
     pide_prescan(ctx, False, s)
     pide(ctx, True, s)
     assert (s[ix["CV"]], s[ix["CVINITIALIZING"]]) == (30.0, 1)  # initialised again
+
+
+def test_closed_loop_settles_on_the_setpoint(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 0.1; p.PGain := 1.0; p.IGain := 12.0;\n"
+        "p.SPProg := 60.0;\n" + AUTO_PROG + "PIDE(p);\n"
+        "p.PV := p.PV + (1.5 * p.CV - p.PV) * 0.1 / 5.0;\n"  # tank: gain 1.5, lag 5 s
+    )
+    rows = run(tmp_path, body, 900, ["PV", "CV", "E"])
+    # PI on a first-order process: the closed loop s^2 + 0.5 s + 0.06 has its poles at
+    # -0.2 and -0.3 1/s, so after 90 s the transient is below e^-18 of the step. The
+    # integral leaves no offset: PV = SP = 60 and CV = 60 / 1.5 = 40
+    last = rows[-1]
+    assert float(last["PV"]) == pytest.approx(60.0, abs=1e-3)
+    assert float(last["CV"]) == pytest.approx(40.0, abs=1e-3)
+    assert max(num(rows, "PV")) < 60.0 + 0.5  # real poles: no overshoot beyond rounding
