@@ -551,3 +551,26 @@ def test_closed_loop_settles_on_the_setpoint(tmp_path: Path) -> None:
     assert float(last["PV"]) == pytest.approx(60.0, abs=1e-3)
     assert float(last["CV"]) == pytest.approx(40.0, abs=1e-3)
     assert max(num(rows, "PV")) < 60.0 + 0.5  # real poles: no overshoot beyond rounding
+
+
+def test_an_autotune_operand_is_rejected_in_structured_text(tmp_path: Path) -> None:
+    # decision 0191: only a function block diagram can attach a PIDE_AUTOTUNE tag
+    src = "VAR p : PID_ENHANCED; tune : PIDE_AUTOTUNE; END_VAR\nPIDE(p, tune);\n"
+    _, report = trace(tmp_path, src, ".st", 1, [], expect_code=1)
+    [d] = report["diagnostics"]
+    assert (d["code"], d["line"], d["column"]) == ("E104", 2, 1)
+    assert "PIDE takes 1 operand, 2 given" in d["message"]
+
+
+def test_dependent_gains_scale_the_derivative_by_the_controller_gain(tmp_path: Path) -> None:
+    body = (
+        "p.TimingMode := 1; p.OversampleDT := 1.0; p.DependIndepend := 1; p.PGain := 2.0;\n"
+        "p.DGain := 0.1; p.CVInitValue := 50.0; p.SPProg := 60.0;\n"
+        + AUTO_PROG
+        + "IF n <= 2 THEN p.PV := 40.0; ELSE p.PV := 41.0; END_IF;\nPIDE(p);\n"
+    )
+    rows = run(tmp_path, body, 4, ["CV"])
+    # IGain 0: no integral. Scan 3, PV 40 -> 41: dE = -1, D = 60 x 0.1 x (-1) / 1 = -6;
+    # dCV = Kc (dE + dD) = 2 x (-1 - 6) = -14 -> 36. Scan 4: dE 0, D back to 0:
+    # 2 x (0 + 6) = +12 -> 48
+    assert num(rows, "CV") == pytest.approx([50.0, 50.0, 36.0, 48.0])
