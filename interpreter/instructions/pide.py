@@ -96,6 +96,8 @@ def _checked(s: list, value: float, lo: float, hi: float, flag: str) -> float:
     """An input limited to lo..hi, with its Inv flag set when it was outside."""
     bad = not lo <= value <= hi
     _set(s, flag, bad)
+    if math.isnan(value):
+        return lo if math.isfinite(lo) else 0.0
     return _clamp(value, lo, hi)
 
 
@@ -196,7 +198,7 @@ def _setpoint(s: list, mode: str, pv: float) -> float:
     lo = _g(s, "SPLLIMIT")
     hi = max(_g(s, "SPHLIMIT"), lo)
     source = "SPPROG" if prog else "SPOPER"
-    if _b(s, "PVTRACKING") and mode in ("MANUAL", "OVERRIDE", "HAND"):
+    if _b(s, "PVTRACKING") and mode in ("MANUAL", "OVERRIDE", "HAND") and math.isfinite(pv):
         _set(s, source, f32(pv))  # the setpoint in use follows PV: bumpless back to Auto
     if mode == "CASRAT":
         sp = _checked(s, _g(s, "SPCASCADE"), lo, hi, "SPCASCADEINV")
@@ -330,7 +332,10 @@ def _execute(s: list, dt: float | None, first: bool) -> None:
     _validate(s)
     _requests(s)
     mode = _mode(s) or "MANUAL"
-    pv_ok = not (_b(s, "PVFAULTED") or _b(s, "PVSPANINV") or _b(s, "SPLIMITSINV"))
+    # PV health: PVFault, or a PV that is not a number (an infinity or NaN from a broken
+    # input) counts as bad health without a Status bit, as the manual's "PV health bad" row
+    pv_health = not _b(s, "PVFAULTED") and math.isfinite(_g(s, "PV"))
+    pv_ok = pv_health and not (_b(s, "PVSPANINV") or _b(s, "SPLIMITSINV"))
     cv_ok = not (_b(s, "CVFAULTED") or _b(s, "CVEUSPANINV"))
     ratio_bad = _b(s, "RATIOLIMITSINV") and _b(s, "USERATIO")
     timing_bad = dt is None
@@ -348,8 +353,8 @@ def _execute(s: list, dt: float | None, first: bool) -> None:
     sp = _setpoint(s, mode, pv)
     _set(s, "SP", f32(sp))
     eu_lo, eu_hi = _g(s, "PVEUMIN"), _g(s, "PVEUMAX")
-    span_ok = not (_b(s, "PVSPANINV") or _b(s, "SPLIMITSINV"))
     e = pv - sp if _b(s, "CONTROLACTION") else sp - pv
+    span_ok = not (_b(s, "PVSPANINV") or _b(s, "SPLIMITSINV")) and math.isfinite(e)
     _set(s, "E", f32(e))
     pv_pct = e_pct = 0.0
     if span_ok:
@@ -358,7 +363,7 @@ def _execute(s: list, dt: float | None, first: bool) -> None:
         _set(s, "PVPERCENT", f32(pv_pct))
         _set(s, "SPPERCENT", f32((sp - eu_lo) * pct))
         _set(s, "EPERCENT", f32(e_pct))
-    if _b(s, "PVFAULTED") or not span_ok:
+    if not pv_health or not span_ok:
         _clear_pv_alarms(s)
     else:
         _level_alarms(s, pv, sp)

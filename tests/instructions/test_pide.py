@@ -574,3 +574,30 @@ def test_dependent_gains_scale_the_derivative_by_the_controller_gain(tmp_path: P
     # dCV = Kc (dE + dD) = 2 x (-1 - 6) = -14 -> 36. Scan 4: dE 0, D back to 0:
     # 2 x (0 + 6) = +12 -> 48
     assert num(rows, "CV") == pytest.approx([50.0, 50.0, 36.0, 48.0])
+
+
+def test_a_pv_that_is_not_a_number_is_bad_health() -> None:
+    import math
+
+    from interpreter.instructions.pide import pide
+    from interpreter.vm.context import ExecContext
+    from tests.instructions.structs import new_struct, struct_type
+
+    ix = struct_type("PID_ENHANCED").index
+    s = new_struct(
+        "PID_ENHANCED", TimingMode=1, OversampleDT=1.0, IGain=60.0, PV=40.0, SPOper=50.0,
+        CVInitValue=30.0, OperAutoReq=1, PVHLimit=10.0,
+    )  # fmt: skip
+    ctx = ExecContext()
+    pide(ctx, True, s)
+    assert (s[ix["AUTO"]], s[ix["CV"]], s[ix["PVHALARM"]]) == (1, 30.0, 1)
+    s[ix["PV"]] = math.nan
+    pide(ctx, True, s)
+    # Auto is left for Manual, CV stays where it was (CVOper followed it), the PV alarms are
+    # cleared; no Status bit names it (PVFault was not set)
+    assert (s[ix["AUTO"]], s[ix["MANUAL"]], s[ix["CV"]], s[ix["PVHALARM"]]) == (0, 1, 30.0, 0)
+    assert s[ix["STATUS1"]] == 0
+    s[ix["PV"]], s[ix["OPERAUTOREQ"]] = 45.0, 1
+    pide(ctx, True, s)
+    # back in Auto: the integral moves from 30 by 1 x 5 x 1 = 5, with no memory of the NaN
+    assert (s[ix["AUTO"]], s[ix["CV"]]) == (1, 35.0)
