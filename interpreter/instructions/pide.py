@@ -28,7 +28,12 @@ Hand: HandFB (held while HandFBFault). CVInitReq, and the first execution after 
 initialise CV from CVInitValue (EU) and set CVInitializing (not with CVFault or an invalid
 CV span); ManualAfterInit then puts the loop in Manual.
 
-Modes and requests: see decision 0190 for the order. Operator requests (Oper*Req) are
+Modes and requests: program requests win over operator requests, Operator control wins a
+tie from one side; Hand, then Override, while their request is set (Manual once released),
+else Manual, Auto, Cascade/Ratio (with AllowCasRat) in that precedence from the requests of
+the side in control (decision 0190). A faulted or invalid PV (PVFault, PVSpanInv,
+SPLimitsInv, a PV that is not a number), a faulted output (CVFault, CVEUSpanInv) or an
+invalid timing input forces Auto and Cascade/Ratio to Manual. Operator requests (Oper*Req) are
 cleared after every execution; program requests only when ProgValueReset is set, which
 also makes SPProg, CVProg and RatioProg follow the loop in Operator control. The operator
 values follow the loop whenever they are not in use (bumpless Program -> Operator).
@@ -38,7 +43,9 @@ Alarms: PVHHAlarm/PVHAlarm set at PV >= limit, cleared below limit - PVDeadband;
 PVLAlarm/PVLLAlarm mirror them. Deviation alarms compare PV - SP with the four Dev limits
 (all entered positive): DevH* at PV - SP >= limit, DevL* at PV - SP <= -limit, each clearing
 DevDeadband inside. PV rate of change is sampled every PVROCPeriod seconds. PV alarms and
-deviation alarms are cleared while PV is faulted.
+deviation alarms are cleared while PV is faulted. InitPrimary, WindupHOut and WindupLOut
+serve a primary loop (the windup outputs report the SP limit or the CV limit that stops PV
+moving that way). Only the program or operator value in use is range-checked.
 
 The autotuner cannot be attached in Structured Text (only a function block diagram has the
 Autotune operand), so the Atune* members are left alone (decision 0191).
