@@ -173,6 +173,7 @@ IMPLEMENTED = frozenset(
         "OSR",
         "OSRI",
         "PID",
+        "PIDE",
         "RAD@rll",
         "RAD@st",
         "RES",
