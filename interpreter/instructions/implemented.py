@@ -205,6 +205,7 @@ IMPLEMENTED = frozenset(
         "TOFR",
         "TON",
         "TONR",
+        "TOT",
         "TRN@rll",
         "TRN@st",
         "TRUNC@st",

@@ -1,0 +1,143 @@
+"""Process control blocks of 1756-RM006 that logixst simulates: TOT (totalizer) and ALM
+(analog alarm). Decisions where the reference is silent: docs/decisions/0177 (TOT) and
+0178 (ALM).
+
+Conventions (as select_limit_blocks.py, decision 0063): in Structured Text the block always
+executes (EnableIn is not read) and sets EnableOut; REAL outputs are rounded to single
+precision; the Status word is packed from its BOOL members (motion_layout.pack) after they
+are set; InstructFault summarises the "...Inv" bits of the block.
+
+TOT (totalizer), one execution:
+- DeltaT comes from the timing mode (block_timing.py, decision 0139). TimeBase 0..3 says
+  whether In is a rate per second, minute, hour or day (1, 60, 3600, 86400 s); another value
+  sets TimeBaseInv and nothing is integrated.
+- Program/operator control: ProgOperReq or OperOperReq put the block in operator control
+  (ProgOper false) and keep it there; otherwise ProgProgReq or OperProgReq put it in program
+  control.
+- Run/stop: in program control ProgStopReq stops and otherwise ProgStartReq starts; in
+  operator control OperStopReq / OperStartReq do the same (a stop request wins).
+- Reset: a rising ProgResetReq in program control, or OperResetReq in operator control,
+  copies Total into OldTotal and loads ResetValue; the program reset also sets
+  ProgResetDone, which clears once ProgResetReq is false again.
+- Integration (trapezoidal rule, in double precision as the reference says): while running,
+  with In above LowInCutoff (LowInCutoffFlag is In <= LowInCutoff) and InFault clear,
+  Total += Gain x DeltaT / TimeBase seconds x (In + In of the previous execution) / 2.
+  The first execution in run after a stop (or after prescan) only records In.
+- TargetFlag: Total >= Target; TargetDev1Flag / TargetDev2Flag: Total >= Target -
+  TargetDev1 / TargetDev2 (the pre-targets).
+- At the end of every execution the operator requests are cleared; with ProgValueReset the
+  program requests are cleared too.
+"""
+
+from __future__ import annotations
+
+from ..runtime.motion_layout import pack, packed_words, struct_type
+from ..vm.context import ExecContext
+from ..vm.values import f32
+from . import block_timing
+from .registry import implements, prescan
+
+
+def pack_status(s: list, words: tuple[tuple[int, tuple[tuple[int, int], ...]], ...]) -> None:
+    for word, bits in words:
+        pack(s, word, bits)
+
+
+# ------------------------------------------------------------------ TOT
+_T = struct_type("TOTALIZER").index
+_T_TIMING = block_timing.timing_layout("TOTALIZER")
+_T_WORDS = packed_words("TOTALIZER")
+TIME_BASE_SECONDS = (1.0, 60.0, 3600.0, 86400.0)  # TimeBase 0 s, 1 min, 2 h, 3 days
+_T_OPER_REQS = tuple(
+    _T[m] for m in ("OPERPROGREQ", "OPEROPERREQ", "OPERSTARTREQ", "OPERSTOPREQ", "OPERRESETREQ")
+)
+_T_PROG_REQS = tuple(
+    _T[m] for m in ("PROGPROGREQ", "PROGOPERREQ", "PROGSTARTREQ", "PROGSTOPREQ", "PROGRESETREQ")
+)
+_T_INVS = tuple(
+    _T[m]
+    for m in (
+        "TIMEBASEINV",
+        "TIMINGMODEINV",
+        "RTSTIMEINV",
+        "RTSTIMESTAMPINV",
+        "DELTATINV",
+    )
+)
+
+
+def _tot_reset(s: list) -> None:
+    s[_T["OLDTOTAL"]] = s[_T["TOTAL"]]
+    s[_T["TOTALACC"]] = float(s[_T["RESETVALUE"]])
+    s[_T["TOTAL"]] = f32(s[_T["RESETVALUE"]])
+
+
+@implements("TOT")
+def tot(ctx: ExecContext, rung: bool, s: list) -> None:
+    dt = block_timing.sample(ctx, s, _T_TIMING)
+    time_base = s[_T["TIMEBASE"]]
+    s[_T["TIMEBASEINV"]] = int(not 0 <= time_base <= 3)
+    s[_T["INFAULTED"]] = int(bool(s[_T["INFAULT"]]))
+    # A program (or the operator) writing Total directly moves the running total with it.
+    if f32(s[_T["TOTALACC"]]) != s[_T["TOTAL"]]:
+        s[_T["TOTALACC"]] = float(s[_T["TOTAL"]])
+
+    # program / operator control
+    if s[_T["PROGOPERREQ"]] or s[_T["OPEROPERREQ"]]:
+        s[_T["PROGOPER"]] = 0
+    elif s[_T["PROGPROGREQ"]] or s[_T["OPERPROGREQ"]]:
+        s[_T["PROGOPER"]] = 1
+    prog = bool(s[_T["PROGOPER"]])
+
+    # run / stop: the requests of the controlling side, stop first
+    start, stop = ("PROGSTARTREQ", "PROGSTOPREQ") if prog else ("OPERSTARTREQ", "OPERSTOPREQ")
+    if s[_T[stop]]:
+        s[_T["RUNSTOP"]] = 0
+    elif s[_T[start]]:
+        s[_T["RUNSTOP"]] = 1
+
+    # reset
+    prog_reset = bool(s[_T["PROGRESETREQ"]])
+    if prog and prog_reset and not s[_T["PROGRESETREQPREV"]]:
+        _tot_reset(s)
+        s[_T["PROGRESETDONE"]] = 1
+    elif not prog_reset:
+        s[_T["PROGRESETDONE"]] = 0
+    s[_T["PROGRESETREQPREV"]] = int(prog_reset)
+    if not prog and s[_T["OPERRESETREQ"]]:
+        _tot_reset(s)
+
+    # totalization
+    x = s[_T["IN"]]
+    s[_T["LOWINCUTOFFFLAG"]] = cutoff = int(x <= s[_T["LOWINCUTOFF"]])
+    running = bool(s[_T["RUNSTOP"]])
+    if dt is not None and not s[_T["TIMEBASEINV"]]:
+        if running and s[_T["WASRUNNING"]] and not cutoff and not s[_T["INFAULT"]]:
+            rate = (x + s[_T["INPREV"]]) / 2.0
+            acc = s[_T["TOTALACC"]] + s[_T["GAIN"]] * dt / TIME_BASE_SECONDS[time_base] * rate
+            s[_T["TOTALACC"]] = acc
+            s[_T["TOTAL"]] = f32(acc)
+        s[_T["INPREV"]] = x
+        s[_T["WASRUNNING"]] = int(running)
+
+    total, target = s[_T["TOTAL"]], s[_T["TARGET"]]
+    s[_T["TARGETFLAG"]] = int(total >= target)
+    s[_T["TARGETDEV1FLAG"]] = int(total >= target - s[_T["TARGETDEV1"]])
+    s[_T["TARGETDEV2FLAG"]] = int(total >= target - s[_T["TARGETDEV2"]])
+
+    s[_T["INSTRUCTFAULT"]] = int(any(s[i] for i in _T_INVS))
+    pack_status(s, _T_WORDS)
+    for i in _T_OPER_REQS:
+        s[i] = 0
+    if s[_T["PROGVALUERESET"]]:
+        for i in _T_PROG_REQS:
+            s[i] = 0
+    s[_T["ENABLEOUT"]] = 1
+
+
+@prescan("TOT")
+def tot_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
+    # Instruction first scan: a new DeltaT series, and the first execution in run only
+    # records In (no trapezoid with an In from before the restart).
+    block_timing.restart(s, _T_TIMING)
+    s[_T["WASRUNNING"]] = 0

@@ -1,0 +1,191 @@
+"""TOT and ALM (process_blocks.py, decisions 0177 and 0178), expected values by hand.
+
+The totalizer integrates with the trapezoidal rule: each execution in run adds
+Gain x DeltaT / TimeBase seconds x (In + previous In) / 2; the first execution in run only
+records In. Status bits by the catalog (TOTALIZER / ALARM types).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from interpreter.instructions import process_blocks as pb
+from interpreter.vm.context import ExecContext
+from tests.instructions.run_cli import trace
+from tests.instructions.structs import new_struct, struct_type
+
+TI = struct_type("TOTALIZER").index
+
+
+def _tot(**members: object) -> list:
+    return new_struct("TOTALIZER", **members)
+
+
+def _run(s: list, ctx: ExecContext, **members: object) -> list:
+    for name, v in members.items():
+        s[TI[name.upper()]] = v
+    pb.tot(ctx, True, s)
+    return s
+
+
+def g(s: list, name: str) -> object:
+    return s[TI[name.upper()]]
+
+
+def test_new_totalizer_defaults() -> None:
+    s = _tot()
+    # a new tag: flow per minute, gain 1, stopped, in operator control
+    assert (g(s, "TimeBase"), g(s, "Gain"), g(s, "RunStop"), g(s, "ProgOper")) == (1, 1.0, 0, 0)
+
+
+def test_constant_flow_through_run(tmp_path: Path) -> None:
+    src = (
+        "VAR t : TOTALIZER; total : REAL; END_VAR\n"
+        "t.In := 60.0; t.TimeBase := 1; t.ProgProgReq := 1; t.ProgStartReq := 1;\n"
+        "TOT(t);\ntotal := t.Total;\n"
+    )
+    rows, report = trace(tmp_path, src, ".st", 11, ["total", "t.RunStop", "t.ProgOper"], 100.0)
+    # 60 per minute = 1 per second; 100 ms scans in the continuous task: the first execution
+    # starts the run (records In only, DeltaT 0), each later one adds 1 x 0.1 = 0.1
+    assert [float(r["total"]) for r in rows] == pytest.approx(
+        [0.1 * i for i in range(11)], abs=1e-6
+    )
+    assert rows[-1]["t.RunStop"] == "1" and rows[-1]["t.ProgOper"] == "1"
+    assert report["diagnostics"] == []
+
+
+def test_trapezoidal_rule_and_time_bases() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)  # periodic 1 s task: DeltaT = 1 s
+    s = _tot(TimeBase=0, ProgOper=1, ProgStartReq=1)
+    _run(s, ctx, In=0.0)  # first in run: records In = 0
+    assert g(s, "Total") == 0.0
+    _run(s, ctx, In=10.0)  # (0 + 10) / 2 x 1 s = 5
+    assert g(s, "Total") == 5.0
+    _run(s, ctx, In=20.0)  # + (10 + 20) / 2 = 15 -> 20
+    assert g(s, "Total") == 20.0
+    _run(s, ctx, Gain=2.0, In=20.0)  # + 2 x 20 = 40 -> 60
+    assert g(s, "Total") == 60.0
+    _run(s, ctx, Gain=1.0, TimeBase=2, In=7200.0)  # hours: + (20 + 7200) / 2 / 3600 = 1.002777..
+    assert g(s, "Total") == pytest.approx(61.0027777, rel=1e-7)
+    _run(s, ctx, TimeBase=3, In=86400.0)  # days: + (7200 + 86400) / 2 / 86400 = 0.541666..
+    assert g(s, "Total") == pytest.approx(61.5444444, rel=1e-7)
+
+
+def test_total_is_kept_in_double_precision() -> None:
+    ctx = ExecContext(task_period_ms=1.0)  # 1 ms
+    s = _tot(TimeBase=0, ProgOper=1, ProgStartReq=1, Total=1000.0, In=0.1)
+    for _ in range(10001):
+        pb.tot(ctx, True, s)
+    # 10,000 integrating executions x 0.1 x 0.001 s = +1.0 -> 1001.0; a REAL accumulator
+    # would round every 0.0001 step to a multiple of 1000's ulp (6.1e-5) and drift by ~22 %
+    assert g(s, "Total") == pytest.approx(1001.0, abs=1e-4)
+
+
+def test_low_input_cutoff_stops_totalizing() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(TimeBase=0, ProgOper=1, ProgStartReq=1, LowInCutoff=1.0, In=4.0)
+    _run(s, ctx)
+    _run(s, ctx)  # + 4
+    assert (g(s, "Total"), g(s, "LowInCutoffFlag")) == (4.0, 0)
+    _run(s, ctx, In=1.0)  # In <= LowInCutoff: flag, nothing added
+    assert (g(s, "Total"), g(s, "LowInCutoffFlag")) == (4.0, 1)
+    _run(s, ctx, In=3.0)  # back above: trapezoid from the cut-off In 1 -> + (1 + 3) / 2 = 2
+    assert (g(s, "Total"), g(s, "LowInCutoffFlag")) == (6.0, 0)
+
+
+def test_program_start_stop_and_first_scan_after_restart() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(TimeBase=0, ProgOper=1, In=2.0)
+    _run(s, ctx)  # stopped: nothing
+    assert (g(s, "RunStop"), g(s, "Total")) == (0, 0.0)
+    _run(s, ctx, ProgStartReq=1, ProgStopReq=1)  # both: the stop wins
+    assert g(s, "RunStop") == 0
+    _run(s, ctx, ProgStopReq=0)  # running, first scan only records In
+    assert (g(s, "RunStop"), g(s, "Total")) == (1, 0.0)
+    _run(s, ctx)  # + 2
+    _run(s, ctx, ProgStartReq=0, ProgStopReq=1)  # stopped: held at 2
+    assert (g(s, "RunStop"), g(s, "Total")) == (0, 2.0)
+    _run(s, ctx, ProgStopReq=0, ProgStartReq=1, In=100.0)  # first in run again: records 100
+    assert g(s, "Total") == 2.0
+    _run(s, ctx, In=100.0)  # + 100 (not + (2 + 100) / 2 from the In before the stop)
+    assert g(s, "Total") == 102.0
+
+
+def test_prescan_makes_the_next_execution_a_first_one() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(TimeBase=0, ProgOper=1, ProgStartReq=1, In=5.0)
+    _run(s, ctx)
+    _run(s, ctx)  # + 5
+    pb.tot_prescan(ctx, True, s)
+    _run(s, ctx, In=50.0)  # after prescan: records 50 only
+    assert g(s, "Total") == 5.0
+
+
+def test_program_reset_handshake() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(TimeBase=0, ProgOper=1, Total=42.0, ResetValue=3.0)
+    _run(s, ctx, ProgResetReq=1)  # rising edge: OldTotal 42, Total 3, done
+    assert (g(s, "OldTotal"), g(s, "Total"), g(s, "ProgResetDone")) == (42.0, 3.0, 1)
+    _run(s, ctx, Total=10.0)  # still requested: no second reset, done stays
+    assert (g(s, "OldTotal"), g(s, "Total"), g(s, "ProgResetDone")) == (42.0, 10.0, 1)
+    _run(s, ctx, ProgResetReq=0)  # request dropped: done clears
+    assert g(s, "ProgResetDone") == 0
+    _run(s, ctx, ProgOper=0, ProgResetReq=1)  # operator control: the program cannot reset
+    assert (g(s, "Total"), g(s, "ProgResetDone")) == (10.0, 0)
+
+
+def test_operator_control_and_request_clearing() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(TimeBase=0, ProgOper=1, In=1.0, Total=7.0, ResetValue=0.5)
+    _run(s, ctx, OperOperReq=1)  # to operator control; the request is cleared after
+    assert (g(s, "ProgOper"), g(s, "OperOperReq")) == (0, 0)
+    _run(s, ctx, ProgStartReq=1)  # a program start is not obeyed in operator control
+    assert g(s, "RunStop") == 0
+    _run(s, ctx, OperStartReq=1)
+    assert (g(s, "RunStop"), g(s, "OperStartReq")) == (1, 0)
+    _run(s, ctx, OperResetReq=1)  # operator reset: OldTotal 7, Total 0.5, no ProgResetDone;
+    # then this execution's own + (1 + 1) / 2 x 1 s -> 1.5
+    assert (g(s, "OldTotal"), g(s, "Total"), g(s, "ProgResetDone")) == (7.0, 1.5, 0)
+    assert g(s, "OperResetReq") == 0
+    _run(s, ctx, ProgOperReq=1, OperProgReq=1)  # ProgOperReq keeps operator control
+    assert g(s, "ProgOper") == 0
+    _run(s, ctx, ProgOperReq=0, OperProgReq=1)  # now the operator hands over to the program
+    assert g(s, "ProgOper") == 1
+    # ProgStartReq is still set (no ProgValueReset), so the program keeps it running
+    assert g(s, "RunStop") == 1 and g(s, "ProgStartReq") == 1
+    _run(s, ctx, ProgValueReset=1)  # program requests cleared at the end of the execution
+    assert (g(s, "ProgStartReq"), g(s, "ProgProgReq"), g(s, "RunStop")) == (0, 0, 1)
+
+
+def test_target_and_pre_target_flags() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(Target=100.0, TargetDev1=10.0, TargetDev2=20.0, Total=79.0)
+    _run(s, ctx)  # 79 < 80 (Target - Dev2)
+    assert [g(s, f) for f in ("TargetFlag", "TargetDev1Flag", "TargetDev2Flag")] == [0, 0, 0]
+    _run(s, ctx, Total=80.0)  # reaches Target - TargetDev2 = 80
+    assert [g(s, f) for f in ("TargetFlag", "TargetDev1Flag", "TargetDev2Flag")] == [0, 0, 1]
+    _run(s, ctx, Total=90.0)  # Target - TargetDev1 = 90
+    assert [g(s, f) for f in ("TargetFlag", "TargetDev1Flag", "TargetDev2Flag")] == [0, 1, 1]
+    _run(s, ctx, Total=100.0)
+    assert [g(s, f) for f in ("TargetFlag", "TargetDev1Flag", "TargetDev2Flag")] == [1, 1, 1]
+
+
+def test_invalid_time_base_timing_mode_and_in_fault() -> None:
+    ctx = ExecContext(task_period_ms=1000.0)
+    s = _tot(TimeBase=4, ProgOper=1, ProgStartReq=1, In=1.0)
+    _run(s, ctx)
+    _run(s, ctx)
+    # TimeBaseInv (bit 2) + InstructFault (bit 0) = 5; nothing integrated
+    assert (g(s, "Status"), g(s, "TimeBaseInv"), g(s, "Total")) == (5, 1, 0.0)
+    _run(s, ctx, TimeBase=0, TimingMode=7)
+    # TimingModeInv is bit 27: 2**27 + 1 = 134217729
+    assert (g(s, "Status"), g(s, "TimingModeInv"), g(s, "Total")) == (134217729, 1, 0.0)
+    _run(s, ctx, TimingMode=0)
+    _run(s, ctx)  # valid again: + 1
+    assert (g(s, "Status"), g(s, "Total")) == (0, 1.0)
+    _run(s, ctx, InFault=1)  # InFaulted (bit 1) only, no InstructFault; Total held
+    assert (g(s, "Status"), g(s, "InFaulted"), g(s, "Total")) == (2, 1, 1.0)
+    _run(s, ctx, InFault=0)
+    assert (g(s, "Status"), g(s, "Total")) == (0, 2.0)
