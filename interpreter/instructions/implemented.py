@@ -15,6 +15,7 @@ IMPLEMENTED = frozenset(
         "ACS@st",
         "ADD",
         "AHL",
+        "ALM",
         "ALMA",
         "ALMD@rll",
         "ALMD@st",

@@ -31,6 +31,8 @@ TOT (totalizer), one execution:
 
 from __future__ import annotations
 
+import math
+
 from ..runtime.motion_layout import pack, packed_words, struct_type
 from ..vm.context import ExecContext
 from ..vm.values import f32
@@ -141,3 +143,75 @@ def tot_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
     # records In (no trapezoid with an In from before the restart).
     block_timing.restart(s, _T_TIMING)
     s[_T["WASRUNNING"]] = 0
+
+
+# ------------------------------------------------------------------ ALM
+_A = struct_type("ALARM").index
+_A_WORDS = packed_words("ALARM")
+ROC_PERIOD_MAX = 32767.0  # seconds: the longest rate-of-change period the block accepts
+
+
+def _level(s: list, alarm: int, on: bool, clear: bool) -> None:
+    """A latching level alarm: set when `on`, cleared only when `clear` (limit +/- deadband)."""
+    if on:
+        s[alarm] = 1
+    elif clear:
+        s[alarm] = 0
+
+
+@implements("ALM")
+def alm(ctx: ExecContext, rung: bool, s: list) -> None:
+    """Level alarms with a deadband for clearing, and rate-of-change alarms over ROCPeriod.
+
+    Invalid settings set their bit and the block uses 0 instead (the reference's rule):
+    Deadband < 0, ROCPosLimit < 0, ROCNegLimit < 0, ROCPeriod outside 0..32767 s. A limit
+    or period of 0 turns the rate-of-change alarm off. Decision 0178."""
+    x = s[_A["IN"]]
+    db, pos, neg, period = (
+        s[_A["DEADBAND"]],
+        s[_A["ROCPOSLIMIT"]],
+        s[_A["ROCNEGLIMIT"]],
+        s[_A["ROCPERIOD"]],
+    )
+    s[_A["DEADBANDINV"]] = int(db < 0)
+    s[_A["ROCPOSLIMITINV"]] = int(pos < 0)
+    s[_A["ROCNEGLIMITINV"]] = int(neg < 0)
+    s[_A["ROCPERIODINV"]] = int(not 0.0 <= period <= ROC_PERIOD_MAX)
+    db = max(db, 0.0)
+    pos, neg = max(pos, 0.0), max(neg, 0.0)
+    if s[_A["ROCPERIODINV"]]:
+        period = 0.0
+
+    hh, h, lo, ll = s[_A["HHLIMIT"]], s[_A["HLIMIT"]], s[_A["LLIMIT"]], s[_A["LLLIMIT"]]
+    _level(s, _A["HHALARM"], x >= hh, x < hh - db)
+    _level(s, _A["HALARM"], x >= h, x < h - db)
+    _level(s, _A["LALARM"], x <= lo, x > lo + db)
+    _level(s, _A["LLALARM"], x <= ll, x > ll + db)
+
+    # Rate of change: a sample of In is stored each time ROCPeriod has elapsed (checked at
+    # the next execution after it), and ROC = (this sample - the previous) / ROCPeriod.
+    if period > 0.0:
+        since = s[_A["ROCSAMPLETIME"]]
+        if since < 0:
+            s[_A["ROCSAMPLEIN"]], s[_A["ROCSAMPLETIME"]] = x, ctx.now_ms
+        elif ctx.now_ms - since >= period * 1000.0:
+            s[_A["ROC"]] = f32((x - s[_A["ROCSAMPLEIN"]]) / period)
+            s[_A["ROCSAMPLEIN"]], s[_A["ROCSAMPLETIME"]] = x, ctx.now_ms
+    else:
+        s[_A["ROC"]] = 0.0
+        s[_A["ROCSAMPLETIME"]] = -1.0
+    roc = s[_A["ROC"]]
+    s[_A["ROCPOSALARM"]] = int(period > 0.0 and pos > 0.0 and roc >= pos)
+    s[_A["ROCNEGALARM"]] = int(period > 0.0 and neg > 0.0 and roc <= -neg)
+
+    s[_A["INSTRUCTFAULT"]] = int(
+        any(s[_A[b]] for b in ("DEADBANDINV", "ROCPOSLIMITINV", "ROCNEGLIMITINV", "ROCPERIODINV"))
+    )
+    pack_status(s, _A_WORDS)
+    s[_A["ENABLEOUT"]] = int(not math.isinf(roc))
+
+
+@prescan("ALM")
+def alm_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
+    # Instruction first scan: the rate-of-change period starts again with the next sample.
+    s[_A["ROCSAMPLETIME"]] = -1.0

@@ -189,3 +189,107 @@ def test_invalid_time_base_timing_mode_and_in_fault() -> None:
     assert (g(s, "Status"), g(s, "InFaulted"), g(s, "Total")) == (2, 1, 1.0)
     _run(s, ctx, InFault=0)
     assert (g(s, "Status"), g(s, "Total")) == (0, 2.0)
+
+
+# ------------------------------------------------------------------ ALM
+AI = struct_type("ALARM").index
+
+
+def _alm(s: list, ctx: ExecContext | None = None, **members: object) -> list:
+    for name, v in members.items():
+        s[AI[name.upper()]] = v
+    pb.alm(ctx or ExecContext(), True, s)
+    return s
+
+
+def alarms(s: list) -> list[object]:
+    return [s[AI[n]] for n in ("HHALARM", "HALARM", "LALARM", "LLALARM")]
+
+
+def test_new_alarm_tag_never_alarms() -> None:
+    # limits default to the largest / most negative REAL, so no level alarm fires
+    s = _alm(new_struct("ALARM"), In=1.0e30)
+    assert alarms(s) == [0, 0, 0, 0]
+    s = _alm(s, In=-1.0e30)
+    assert alarms(s) == [0, 0, 0, 0] and s[AI["STATUS"]] == 0 and s[AI["ENABLEOUT"]] == 1
+
+
+def test_level_alarms_clear_past_the_deadband() -> None:
+    s = new_struct("ALARM", HHLimit=90.0, HLimit=80.0, LLimit=20.0, LLLimit=10.0, Deadband=2.0)
+    assert alarms(_alm(s, In=50.0)) == [0, 0, 0, 0]
+    assert alarms(_alm(s, In=80.0)) == [0, 1, 0, 0]  # In >= HLimit
+    assert alarms(_alm(s, In=79.0)) == [0, 1, 0, 0]  # 79 >= 80 - 2: still on
+    assert alarms(_alm(s, In=77.5)) == [0, 0, 0, 0]  # 77.5 < 78: cleared
+    assert alarms(_alm(s, In=90.0)) == [1, 1, 0, 0]
+    assert alarms(_alm(s, In=88.5)) == [1, 1, 0, 0]  # HH clears only below 88
+    assert alarms(_alm(s, In=87.0)) == [0, 1, 0, 0]  # below 88, H stays (87 >= 78)
+    assert alarms(_alm(s, In=20.0)) == [0, 0, 1, 0]  # In <= LLimit
+    assert alarms(_alm(s, In=21.5)) == [0, 0, 1, 0]  # not above 20 + 2
+    assert alarms(_alm(s, In=22.5)) == [0, 0, 0, 0]
+    assert alarms(_alm(s, In=10.0)) == [0, 0, 1, 1]
+    assert alarms(_alm(s, In=11.0)) == [0, 0, 1, 1]  # LL clears only above 12
+    assert alarms(_alm(s, In=12.5)) == [0, 0, 1, 0]
+    assert s[AI["STATUS"]] == 0
+
+
+def test_rate_of_change_through_run(tmp_path: Path) -> None:
+    src = (
+        "VAR a : ALARM; x : REAL; roc : REAL; up : BOOL; END_VAR\n"
+        "x := x + 1.0; a.In := x; a.ROCPeriod := 0.5; a.ROCPosLimit := 8.0;\n"
+        "ALM(a);\nroc := a.ROC; up := a.ROCPosAlarm;\n"
+    )
+    rows, report = trace(tmp_path, src, ".st", 11, ["roc", "up"], 100.0)
+    # In rises by 1 every 100 ms scan (x = 1 at t = 0). The first sample is In 1 at t 0;
+    # the next at t 500 ms (In 6): ROC = (6 - 1) / 0.5 = 10 >= 8 -> ROCPosAlarm; at t 1000
+    # (In 11) again (11 - 6) / 0.5 = 10. Between samples ROC holds.
+    assert [float(r["roc"]) for r in rows] == [0.0] * 5 + [10.0] * 6
+    assert [r["up"] for r in rows] == ["0"] * 5 + ["1"] * 6
+    assert report["diagnostics"] == []
+
+
+def test_negative_rate_of_change_and_disabling() -> None:
+    ctx = ExecContext(now_ms=0.0)
+    s = new_struct("ALARM", ROCPeriod=2.0, ROCNegLimit=3.0, ROCPosLimit=1.0)
+    _alm(s, ctx, In=100.0)  # first sample
+    ctx.now_ms = 1999.0
+    _alm(s, ctx, In=80.0)  # period not over yet
+    assert (s[AI["ROC"]], s[AI["ROCNEGALARM"]]) == (0.0, 0)
+    ctx.now_ms = 2000.0
+    _alm(s, ctx, In=92.0)  # (92 - 100) / 2 = -4 <= -3
+    assert (s[AI["ROC"]], s[AI["ROCNEGALARM"]], s[AI["ROCPOSALARM"]]) == (-4.0, 1, 0)
+    ctx.now_ms = 4000.0
+    _alm(s, ctx, In=88.0)  # (88 - 92) / 2 = -2 > -3: cleared
+    assert (s[AI["ROC"]], s[AI["ROCNEGALARM"]]) == (-2.0, 0)
+    ctx.now_ms = 6000.0
+    _alm(s, ctx, In=88.0, ROCPeriod=0.0)  # period 0: rate alarming off, ROC 0
+    assert (s[AI["ROC"]], s[AI["ROCNEGALARM"]], s[AI["ROCPOSALARM"]]) == (0.0, 0, 0)
+
+
+def test_invalid_settings_set_their_bits_and_act_as_zero() -> None:
+    s = new_struct("ALARM", HLimit=50.0, Deadband=-5.0)
+    _alm(s, In=50.0)
+    # DeadbandInv (bit 1) + InstructFault (bit 0) = 3; deadband taken as 0
+    assert (s[AI["STATUS"]], s[AI["HALARM"]]) == (3, 1)
+    _alm(s, In=49.9)  # with deadband 0 the alarm clears as soon as In < 50
+    assert s[AI["HALARM"]] == 0
+    _alm(s, Deadband=0.0, ROCPosLimit=-1.0)  # ROCPosLimitInv bit 2 -> 1 + 4 = 5
+    assert s[AI["STATUS"]] == 5
+    _alm(s, ROCPosLimit=0.0, ROCNegLimit=-1.0)  # bit 3 -> 9
+    assert s[AI["STATUS"]] == 9
+    _alm(s, ROCNegLimit=0.0, ROCPeriod=40000.0)  # beyond 32767 s: bit 4 -> 17
+    assert (s[AI["STATUS"]], s[AI["ROCPERIODINV"]], s[AI["INSTRUCTFAULT"]]) == (17, 1, 1)
+    _alm(s, ROCPeriod=1.0)
+    assert s[AI["STATUS"]] == 0
+
+
+def test_alarm_prescan_restarts_the_rate_period() -> None:
+    ctx = ExecContext(now_ms=0.0)
+    s = new_struct("ALARM", ROCPeriod=1.0, ROCPosLimit=5.0)
+    _alm(s, ctx, In=0.0)
+    pb.alm_prescan(ctx, True, s)
+    ctx.now_ms = 1000.0
+    _alm(s, ctx, In=50.0)  # a new first sample after prescan, not (50 - 0) / 1
+    assert (s[AI["ROC"]], s[AI["ROCPOSALARM"]]) == (0.0, 0)
+    ctx.now_ms = 2000.0
+    _alm(s, ctx, In=56.0)  # (56 - 50) / 1 = 6 >= 5
+    assert (s[AI["ROC"]], s[AI["ROCPOSALARM"]]) == (6.0, 1)
