@@ -77,6 +77,7 @@ IMPLEMENTED = frozenset(
         "EVENT",
         "FFL",
         "FFU",
+        "FGEN",
         "FIND",
         "FLL",
         "FPMS",

@@ -1,6 +1,6 @@
-"""Process control blocks of 1756-RM006 that logixst simulates: TOT (totalizer) and ALM
-(analog alarm). Decisions where the reference is silent: docs/decisions/0177 (TOT) and
-0178 (ALM).
+"""Process control blocks of 1756-RM006 that logixst simulates: TOT (totalizer), ALM
+(analog alarm) and FGEN (function generator). Decisions where the reference is silent:
+docs/decisions/0177 (TOT), 0178 (ALM), 0180 (FGEN).
 
 Conventions (as select_limit_blocks.py, decision 0063): in Structured Text the block always
 executes (EnableIn is not read) and sets EnableOut; REAL outputs are rounded to single
@@ -35,6 +35,7 @@ import math
 
 from ..runtime.motion_layout import pack, packed_words, struct_type
 from ..vm.context import ExecContext
+from ..vm.refs import ArrayRef
 from ..vm.values import f32
 from . import block_timing
 from .registry import implements, prescan
@@ -215,3 +216,47 @@ def alm(ctx: ExecContext, rung: bool, s: list) -> None:
 def alm_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
     # Instruction first scan: the rate-of-change period starts again with the next sample.
     s[_A["ROCSAMPLETIME"]] = -1.0
+
+
+# ------------------------------------------------------------------ FGEN
+_F = struct_type("FUNCTION_GENERATOR").index
+_F_WORDS = packed_words("FUNCTION_GENERATOR")
+
+
+def interpolate(x: float, xs: list[float], ys: list[float]) -> float:
+    """Piecewise-linear through (xs, ys), xs strictly ascending; held flat beyond the ends."""
+    if x <= xs[0]:
+        return ys[0]
+    if x >= xs[-1]:
+        return ys[-1]
+    hi = next(i for i in range(1, len(xs)) if x < xs[i])
+    x0, x1, y0, y1 = xs[hi - 1], xs[hi], ys[hi - 1], ys[hi]
+    return y0 + (x - x0) * (y1 - y0) / (x1 - x0)
+
+
+@implements("FGEN")
+def fgen(
+    ctx: ExecContext, rung: bool, s: list, x1: ArrayRef, y1: ArrayRef, x2: ArrayRef, y2: ArrayRef
+) -> None:
+    """Out = f(In) through the first (Select false) or second table of XY<n>Size points.
+    XY1Size must be 1..the arrays' length, XY2Size 0..theirs (0: no second table) and at
+    least 1 when selected; the X points of the table in use must ascend strictly
+    (XisOutofOrder otherwise). Any of these holds Out. Decision 0180."""
+    n1, n2, second = s[_F["XY1SIZE"]], s[_F["XY2SIZE"]], bool(s[_F["SELECT"]])
+    s[_F["XY1SIZEINV"]] = int(not 1 <= n1 <= min(len(x1), len(y1)))
+    s[_F["XY2SIZEINV"]] = int(not (1 if second else 0) <= n2 <= min(len(x2), len(y2)))
+    s[_F["XISOUTOFORDER"]] = 0
+    xs_ref, ys_ref, n, bad = (x2, y2, n2, "XY2SIZEINV") if second else (x1, y1, n1, "XY1SIZEINV")
+    if not s[_F[bad]]:
+        xs = [float(xs_ref.get(i)) for i in range(n)]  # type: ignore[arg-type]
+        ys = [float(ys_ref.get(i)) for i in range(n)]  # type: ignore[arg-type]
+        if all(a < b for a, b in zip(xs, xs[1:], strict=False)):
+            out = f32(interpolate(s[_F["IN"]], xs, ys))
+            s[_F["OUT"]] = out
+        else:
+            s[_F["XISOUTOFORDER"]] = 1
+    s[_F["INSTRUCTFAULT"]] = int(
+        bool(s[_F["XY1SIZEINV"]] or s[_F["XY2SIZEINV"]] or s[_F["XISOUTOFORDER"]])
+    )
+    pack_status(s, _F_WORDS)
+    s[_F["ENABLEOUT"]] = int(not math.isinf(s[_F["OUT"]]))

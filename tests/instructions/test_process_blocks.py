@@ -12,7 +12,9 @@ from pathlib import Path
 import pytest
 
 from interpreter.instructions import process_blocks as pb
+from interpreter.semantics.types import REAL
 from interpreter.vm.context import ExecContext
+from interpreter.vm.refs import ArrayRef
 from tests.instructions.run_cli import trace
 from tests.instructions.structs import new_struct, struct_type
 
@@ -293,3 +295,68 @@ def test_alarm_prescan_restarts_the_rate_period() -> None:
     ctx.now_ms = 2000.0
     _alm(s, ctx, In=56.0)  # (56 - 50) / 1 = 6 >= 5
     assert (s[AI["ROC"]], s[AI["ROCPOSALARM"]]) == (6.0, 1)
+
+
+# ------------------------------------------------------------------ FGEN
+FI = struct_type("FUNCTION_GENERATOR").index
+
+
+def _real_array(*values: float, size: int | None = None) -> ArrayRef:
+    v = [*values] + [0.0] * ((size or len(values)) - len(values))
+    return ArrayRef(v, 0, REAL, (len(v),))
+
+
+def test_fgen_interpolates_through_run(tmp_path: Path) -> None:
+    src = (
+        "VAR f : FUNCTION_GENERATOR;\n"
+        "  x1 : ARRAY[0..4] OF REAL := [0.0, 10.0, 20.0, 50.0, 0.0];\n"
+        "  y1 : ARRAY[0..4] OF REAL := [0.0, 100.0, 150.0, 0.0, 0.0];\n"
+        "  x2 : ARRAY[0..1] OF REAL; y2 : ARRAY[0..1] OF REAL; x : REAL := -5.0; END_VAR\n"
+        "f.In := x; f.XY1Size := 4;\nFGEN(f, x1, y1, x2, y2);\nx := x + 7.5;\n"
+    )
+    rows, report = trace(tmp_path, src, ".st", 10, ["f.Out", "f.Status"])
+    # In = -5, 2.5, 10, ..., 62.5 through (0,0) (10,100) (20,150) (50,0):
+    #  -5 below X[0] -> Y[0] 0; 2.5 -> 25; 10 -> 100; 17.5 -> 100 + 7.5 x 5 = 137.5;
+    #  25 -> 150 - 5 x 150/30 = 125; 32.5 -> 87.5; 40 -> 50; 47.5 -> 12.5; beyond 50 -> 0
+    expected = [0.0, 25.0, 100.0, 137.5, 125.0, 87.5, 50.0, 12.5, 0.0, 0.0]
+    assert [float(r["f.Out"]) for r in rows] == expected
+    assert {r["f.Status"] for r in rows} == {"0"}
+    assert report["diagnostics"] == []
+
+
+def test_fgen_select_chooses_the_second_table() -> None:
+    s = new_struct("FUNCTION_GENERATOR", In=3.0, XY1Size=2, XY2Size=3, Select=1)
+    x1, y1 = _real_array(0.0, 10.0), _real_array(0.0, 10.0)
+    x2, y2 = _real_array(0.0, 2.0, 4.0), _real_array(-1.0, 1.0, 9.0)
+    pb.fgen(ExecContext(), True, s, x1, y1, x2, y2)
+    assert s[FI["OUT"]] == 5.0  # between (2,1) and (4,9): 1 + 1 x 8/2 = 5
+    s[FI["SELECT"]] = 0
+    pb.fgen(ExecContext(), True, s, x1, y1, x2, y2)
+    assert s[FI["OUT"]] == 3.0  # identity table 1
+    s[FI["XY1SIZE"]] = 1  # one point: Out is that Y whatever In
+    pb.fgen(ExecContext(), True, s, x1, y1, x2, y2)
+    assert (s[FI["OUT"]], s[FI["STATUS"]]) == (0.0, 0)
+
+
+def test_fgen_invalid_sizes_and_order_hold_out() -> None:
+    x, y = _real_array(0.0, 5.0, 5.0), _real_array(1.0, 2.0, 3.0)
+    s = new_struct("FUNCTION_GENERATOR", In=1.0, XY1Size=4, Out=7.0)
+    pb.fgen(ExecContext(), True, s, x, y, x, y)
+    # 4 points but the arrays hold 3: XY1SizeInv (bit 1) + InstructFault = 3; Out held
+    assert (s[FI["STATUS"]], s[FI["OUT"]]) == (3, 7.0)
+    s[FI["XY1SIZE"]] = 0
+    pb.fgen(ExecContext(), True, s, x, y, x, y)
+    assert s[FI["STATUS"]] == 3
+    s[FI["XY1SIZE"]] = 3  # X 0, 5, 5 does not ascend strictly: XisOutofOrder bit 3 -> 9
+    pb.fgen(ExecContext(), True, s, x, y, x, y)
+    assert (s[FI["STATUS"]], s[FI["XISOUTOFORDER"]], s[FI["OUT"]]) == (9, 1, 7.0)
+    s[FI["XY1SIZE"]] = 2  # 0, 5 ascends: Out = 1 + 1 x 1/5 = 1.2
+    pb.fgen(ExecContext(), True, s, x, y, x, y)
+    assert (s[FI["STATUS"]], s[FI["OUT"]]) == (0, pytest.approx(1.2))
+    s[FI["SELECT"]] = 1  # second table selected with XY2Size 0: XY2SizeInv bit 2 -> 5
+    pb.fgen(ExecContext(), True, s, x, y, x, y)
+    assert (s[FI["STATUS"]], s[FI["XY2SIZEINV"]]) == (5, 1)
+    s[FI["XY2SIZE"]] = -1  # negative is invalid even when not selected
+    s[FI["SELECT"]] = 0
+    pb.fgen(ExecContext(), True, s, x, y, x, y)
+    assert s[FI["STATUS"]] == 5
