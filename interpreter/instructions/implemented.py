@@ -73,6 +73,7 @@ IMPLEMENTED = frozenset(
         "DTR",
         "ENPEN",
         "EPMS",
+        "ESEL",
         "ESTOP",
         "EVENT",
         "FFL",

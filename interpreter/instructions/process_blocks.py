@@ -1,6 +1,6 @@
 """Process control blocks of 1756-RM006 that logixst simulates: TOT (totalizer), ALM
-(analog alarm) and FGEN (function generator). Decisions where the reference is silent:
-docs/decisions/0177 (TOT), 0178 (ALM), 0180 (FGEN).
+(analog alarm), FGEN (function generator) and ESEL (enhanced select). Decisions where the
+reference is silent: docs/decisions/0177 (TOT), 0178 (ALM), 0180 (FGEN), 0181 (ESEL).
 
 Conventions (as select_limit_blocks.py, decision 0063): in Structured Text the block always
 executes (EnableIn is not read) and sets EnableOut; REAL outputs are rounded to single
@@ -260,3 +260,88 @@ def fgen(
     )
     pack_status(s, _F_WORDS)
     s[_F["ENABLEOUT"]] = int(not math.isinf(s[_F["OUT"]]))
+
+
+# ------------------------------------------------------------------ ESEL
+_E = struct_type("SELECT_ENHANCED").index
+_E_WORDS = packed_words("SELECT_ENHANCED")
+_E_INS = tuple((_E[f"IN{i}"], _E[f"IN{i}FAULT"]) for i in range(1, 7))
+MANUAL, HIGH, LOW, MEDIAN, AVERAGE = 0, 1, 2, 3, 4  # SelectorMode
+_E_OPER_REQS = (_E["OPERPROGREQ"], _E["OPEROPERREQ"])
+_E_PROG_REQS = (_E["PROGPROGREQ"], _E["PROGOPERREQ"], _E["PROGOVERRIDEREQ"])
+
+
+def _esel_pick(s: list, mode: int, selector: int, used: int) -> tuple[float | None, int, bool]:
+    """(Out or None to hold it, SelectedIn, InsFaulted) for one execution."""
+    if mode == MANUAL:
+        if selector == 0:
+            return None, 0, False  # no input selected: Out holds
+        value, fault = _E_INS[selector - 1]
+        return s[value], selector, bool(s[fault])
+    healthy = [(s[v], n) for n, (v, f) in enumerate(_E_INS[:used], start=1) if not s[f]]
+    if not healthy:
+        return None, 0, True  # every used input faulted: Out holds
+    if mode == HIGH:  # ties go to the lowest-numbered input
+        value, n = max(healthy, key=lambda p: (p[0], -p[1]))
+        return value, n, False
+    if mode == LOW:
+        value, n = min(healthy, key=lambda p: (p[0], p[1]))
+        return value, n, False
+    if mode == MEDIAN:
+        ranked = sorted(healthy, key=lambda p: (p[0], p[1]))
+        mid = len(ranked) // 2
+        if len(ranked) % 2:
+            return ranked[mid][0], ranked[mid][1], False
+        return (ranked[mid - 1][0] + ranked[mid][0]) / 2.0, 0, False
+    return math.fsum(v for v, _ in healthy) / len(healthy), 0, False  # AVERAGE
+
+
+@implements("ESEL")
+def esel(ctx: ExecContext, rung: bool, s: list) -> None:
+    """Select Out from In1..In<InsUsed> by SelectorMode: 0 manual (ProgSelector in program
+    control, OperSelector in operator control; 0 selects nothing), 1 highest, 2 lowest,
+    3 median (even count: mean of the middle two), 4 average of the inputs not faulted.
+    ProgOverrideReq forces manual selection by ProgSelector (Override). Program/operator
+    requests as TOT. Invalid InsUsed (1..6), SelectorMode (0..4) or the selector in use
+    (0..6) hold Out. Decision 0181."""
+    if s[_E["PROGOPERREQ"]] or s[_E["OPEROPERREQ"]]:
+        s[_E["PROGOPER"]] = 0
+    elif s[_E["PROGPROGREQ"]] or s[_E["OPERPROGREQ"]]:
+        s[_E["PROGOPER"]] = 1
+    s[_E["OVERRIDE"]] = override = int(bool(s[_E["PROGOVERRIDEREQ"]]))
+
+    used, mode = s[_E["INSUSED"]], s[_E["SELECTORMODE"]]
+    prog_sel, oper_sel = s[_E["PROGSELECTOR"]], s[_E["OPERSELECTOR"]]
+    s[_E["INSUSEDINV"]] = int(not 1 <= used <= 6)
+    s[_E["SELECTORMODEINV"]] = int(not MANUAL <= mode <= AVERAGE)
+    s[_E["PROGSELECTORINV"]] = int(not 0 <= prog_sel <= 6)
+    s[_E["OPERSELECTORINV"]] = int(not 0 <= oper_sel <= 6)
+    if override:
+        mode, selector, sel_inv = MANUAL, prog_sel, "PROGSELECTORINV"
+    elif s[_E["PROGOPER"]]:
+        selector, sel_inv = prog_sel, "PROGSELECTORINV"
+    else:
+        selector, sel_inv = oper_sel, "OPERSELECTORINV"
+    blocked = s[_E["INSUSEDINV"]] or (not override and s[_E["SELECTORMODEINV"]])
+    if mode == MANUAL and s[_E[sel_inv]]:
+        blocked = 1
+    if not blocked:
+        out, selected, faulted = _esel_pick(s, mode, selector, used)
+        s[_E["SELECTEDIN"]] = selected
+        s[_E["INSFAULTED"]] = int(faulted)
+        if out is not None:
+            s[_E["OUT"]] = f32(out)
+
+    s[_E["INSTRUCTFAULT"]] = int(
+        any(
+            s[_E[b]]
+            for b in ("INSUSEDINV", "SELECTORMODEINV", "PROGSELECTORINV", "OPERSELECTORINV")
+        )
+    )
+    pack_status(s, _E_WORDS)
+    for i in _E_OPER_REQS:
+        s[i] = 0
+    if s[_E["PROGVALUERESET"]]:
+        for i in _E_PROG_REQS:
+            s[i] = 0
+    s[_E["ENABLEOUT"]] = int(not math.isinf(s[_E["OUT"]]))

@@ -360,3 +360,96 @@ def test_fgen_invalid_sizes_and_order_hold_out() -> None:
     s[FI["SELECT"]] = 0
     pb.fgen(ExecContext(), True, s, x, y, x, y)
     assert s[FI["STATUS"]] == 5
+
+
+# ------------------------------------------------------------------ ESEL
+EI = struct_type("SELECT_ENHANCED").index
+INS = {"In1": 5.0, "In2": 9.0, "In3": 1.0, "In4": 7.0, "In5": 3.0, "In6": 100.0}
+
+
+def _esel(s: list, **members: object) -> list:
+    for name, v in members.items():
+        s[EI[name.upper()]] = v
+    pb.esel(ExecContext(), True, s)
+    return s
+
+
+def pick(s: list) -> tuple[object, object]:
+    return s[EI["OUT"]], s[EI["SELECTEDIN"]]
+
+
+def test_esel_high_low_median_average_of_the_used_inputs() -> None:
+    s = new_struct("SELECT_ENHANCED", InsUsed=5, **INS)  # In6 = 100 is not used
+    assert pick(_esel(s, SelectorMode=1)) == (9.0, 2)  # highest of 5 9 1 7 3
+    assert pick(_esel(s, SelectorMode=2)) == (1.0, 3)  # lowest
+    assert pick(_esel(s, SelectorMode=3)) == (5.0, 1)  # sorted 1 3 5 7 9: middle 5 (In1)
+    assert pick(_esel(s, SelectorMode=4)) == (5.0, 0)  # (5 + 9 + 1 + 7 + 3) / 5 = 5
+    assert pick(_esel(s, SelectorMode=3, InsUsed=4)) == (6.0, 0)  # 1 5 7 9: (5 + 7) / 2
+    assert s[EI["STATUS"]] == 0 and s[EI["ENABLEOUT"]] == 1
+
+
+def test_esel_faulted_inputs_are_left_out() -> None:
+    s = new_struct("SELECT_ENHANCED", InsUsed=5, In2Fault=1, **INS)
+    assert pick(_esel(s, SelectorMode=1)) == (7.0, 4)  # In2 (9) faulted: next highest In4
+    assert pick(_esel(s, SelectorMode=4)) == (4.0, 0)  # (5 + 1 + 7 + 3) / 4 = 4
+    assert s[EI["INSFAULTED"]] == 0
+    faults = {f"In{i}Fault": 1 for i in range(1, 6)}
+    _esel(s, SelectorMode=2, **faults)  # every used input faulted: Out holds, InsFaulted
+    assert (pick(s), s[EI["INSFAULTED"]]) == ((4.0, 0), 1)
+
+
+def test_esel_manual_selection_program_and_operator() -> None:
+    s = new_struct("SELECT_ENHANCED", InsUsed=6, SelectorMode=0, ProgSelector=2, **INS)
+    s[EI["OPERSELECTOR"]] = 6
+    assert pick(_esel(s)) == (100.0, 6)  # a new tag is in operator control: OperSelector 6
+    _esel(s, ProgProgReq=1)  # to program control: ProgSelector 2
+    assert (s[EI["PROGOPER"]], pick(s)) == (1, (9.0, 2))
+    _esel(s, ProgProgReq=0, OperOperReq=1)  # operator request: back to OperSelector
+    assert (s[EI["PROGOPER"]], s[EI["OPEROPERREQ"]], pick(s)) == (0, 0, (100.0, 6))
+    _esel(s, OperSelector=0)  # selector 0: nothing selected, Out holds
+    assert pick(s) == (100.0, 0)
+    _esel(s, OperSelector=3, In3Fault=1)  # a faulted input chosen by hand: InsFaulted
+    assert (pick(s), s[EI["INSFAULTED"]]) == ((1.0, 3), 1)
+
+
+def test_esel_override_uses_the_program_selector() -> None:
+    s = new_struct("SELECT_ENHANCED", InsUsed=6, SelectorMode=1, ProgSelector=5, **INS)
+    assert pick(_esel(s)) == (100.0, 6)  # high select
+    _esel(s, ProgOverrideReq=1)  # override: manual by ProgSelector, even in operator control
+    assert (s[EI["OVERRIDE"]], s[EI["PROGOPER"]], pick(s)) == (1, 0, (3.0, 5))
+    _esel(s, ProgValueReset=1)  # program requests cleared after this execution
+    assert (s[EI["PROGOVERRIDEREQ"]], s[EI["OVERRIDE"]]) == (0, 1)
+    _esel(s, ProgValueReset=0)
+    assert (s[EI["OVERRIDE"]], pick(s)) == (0, (100.0, 6))
+
+
+def test_esel_invalid_settings_hold_out() -> None:
+    s = new_struct("SELECT_ENHANCED", InsUsed=7, SelectorMode=1, Out=-2.0, **INS)
+    _esel(s)  # InsUsedInv (bit 1) + InstructFault = 3
+    assert (s[EI["STATUS"]], s[EI["OUT"]]) == (3, -2.0)
+    _esel(s, InsUsed=3, SelectorMode=5)  # SelectorModeInv bit 2 -> 5
+    assert (s[EI["STATUS"]], s[EI["OUT"]]) == (5, -2.0)
+    _esel(s, SelectorMode=0, ProgSelector=9)  # ProgSelectorInv bit 3 -> 9, not in use: works
+    assert (s[EI["STATUS"]], s[EI["SELECTORMODEINV"]]) == (9, 0)
+    _esel(s, ProgSelector=0, OperSelector=-1)  # OperSelectorInv bit 4 -> 17, in use: holds
+    assert (s[EI["STATUS"]], s[EI["OPERSELECTORINV"]], s[EI["OUT"]]) == (17, 1, -2.0)
+
+
+def test_esel_through_run(tmp_path: Path) -> None:
+    src = (
+        "VAR e : SELECT_ENHANCED; k : DINT; END_VAR\n"
+        "k := k + 1;\n"
+        "e.In1 := 10.0; e.In2 := 20.0; e.In3 := 40.0; e.InsUsed := 3; e.SelectorMode := 3;\n"
+        "e.In2Fault := k >= 3;\n"
+        "ESEL(e);\n"
+    )
+    rows, report = trace(tmp_path, src, ".st", 4, ["e.Out", "e.SelectedIn"])
+    # median of 10 20 40 is In2 (20); from the third scan In2 is faulted: the median of the
+    # two left is their mean (10 + 40) / 2 = 25, with no single input selected
+    assert [(r["e.Out"], r["e.SelectedIn"]) for r in rows] == [
+        ("20.0", "2"),
+        ("20.0", "2"),
+        ("25.0", "0"),
+        ("25.0", "0"),
+    ]
+    assert report["diagnostics"] == []
