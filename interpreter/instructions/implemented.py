@@ -57,6 +57,8 @@ IMPLEMENTED = frozenset(
         "CTD",
         "CTU",
         "CTUD",
+        "D2SD",
+        "D3SD",
         "DCM",
         "DCS",
         "DCSRT",
