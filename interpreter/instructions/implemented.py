@@ -195,6 +195,7 @@ IMPLEMENTED = frozenset(
         "SQRT@st",
         "SRT@rll",
         "SRT@st",
+        "SRTP",
         "SSUM",
         "SSV",
         "STD",
