@@ -171,6 +171,7 @@ IMPLEMENTED = frozenset(
         "OSR",
         "OSRI",
         "PID",
+        "POSP",
         "RAD@rll",
         "RAD@st",
         "RES",

@@ -1,5 +1,8 @@
-"""SRTP (split range time proportional), 1756-RM006; decision 0183.
+"""SRTP (split range time proportional) and POSP (position proportional), 1756-RM006;
+decisions 0183 (SRTP) and 0184 (POSP). Both pulse on/off outputs at the start of each cycle
+of a free-running cycle timer.
 
+SRTP:
 - A free-running cycle timer counts 0..CycleTime seconds, advanced by DeltaT, the virtual
   time since the block's previous execution (0 on the first); it wraps at CycleTime.
   CycleTime 0 (or invalid: negative, used as 0) clears the timer and both outputs.
@@ -58,24 +61,32 @@ def _on_time(s: list, side: str, x: float, cycle: float) -> float:
     return min(t, max_t)
 
 
+def _cycle(ctx: ExecContext, s: list, ix: dict[str, int]) -> tuple[float, float | None]:
+    """(CycleTime in use, the cycle timer after this execution or None when CycleTime is
+    0). DeltaT is the virtual time since the previous execution; sets CycleTimeInv."""
+    last, s[ix["LASTRUN"]] = s[ix["LASTRUN"]], ctx.now_ms
+    dt = 0.0 if last < 0 else max(0.0, ctx.now_ms - last) / 1000.0
+    cycle = s[ix["CYCLETIME"]]
+    s[ix["CYCLETIMEINV"]] = int(cycle < 0)
+    cycle = max(cycle, 0.0)
+    if cycle <= 0.0:
+        s[ix["CYCLETIMER"]] = 0.0
+        return cycle, None
+    timer = s[ix["CYCLETIMER"]] + dt
+    s[ix["CYCLETIMER"]] = timer = timer % cycle if timer >= cycle else timer
+    return cycle, timer
+
+
 @implements("SRTP")
 def srtp(ctx: ExecContext, rung: bool, s: list) -> None:
-    last, s[_S["LASTRUN"]] = s[_S["LASTRUN"]], ctx.now_ms
-    dt = 0.0 if last < 0 else max(0.0, ctx.now_ms - last) / 1000.0
-    cycle = s[_S["CYCLETIME"]]
-    s[_S["CYCLETIMEINV"]] = int(cycle < 0)
-    cycle = max(cycle, 0.0)
+    cycle, timer = _cycle(ctx, s, _S)
     x = s[_S["IN"]]
     heat = _on_time(s, "HEAT", x, cycle)
     cool = _on_time(s, "COOL", x, cycle)
-    if cycle <= 0.0:
-        s[_S["CYCLETIMER"]] = 0.0
+    if timer is None:
         s[_S["HEATOUT"]] = s[_S["COOLOUT"]] = 0
         s[_S["HEATTIMEPERCENT"]] = s[_S["COOLTIMEPERCENT"]] = 0.0
     else:
-        timer = s[_S["CYCLETIMER"]] + dt
-        timer = timer % cycle if timer >= cycle else timer
-        s[_S["CYCLETIMER"]] = timer
         s[_S["HEATOUT"]] = int(timer < heat)
         s[_S["COOLOUT"]] = int(timer < cool)
         s[_S["HEATTIMEPERCENT"]] = f32(heat / cycle * 100.0)
@@ -90,3 +101,81 @@ def srtp_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
     # Instruction first scan: a new cycle starts at the next execution.
     s[_S["CYCLETIMER"]] = 0.0
     s[_S["LASTRUN"]] = -1.0
+
+
+# ------------------------------------------------------------------ POSP
+_P = struct_type("POSITION_PROP").index
+_P_WORDS = packed_words("POSITION_PROP")
+_P_INVS = tuple(
+    _P[b]
+    for b in (
+        "CYCLETIMEINV",
+        "OPENRATEINV",
+        "CLOSERATEINV",
+        "MAXONTIMEINV",
+        "MINONTIMEINV",
+        "DEADTIMEINV",
+        "POSITIONPCTINV",
+        "SPPERCENTINV",
+        "POSITIONSPANINV",
+    )
+)
+
+
+@implements("POSP")
+def posp(ctx: ExecContext, rung: bool, s: list) -> None:
+    """Open/close pulses proportional to the position error, decision 0184:
+    OpenTime = (SPPercent - PositionPercent) / OpenRate + Deadtime when SP is above the
+    position, CloseTime likewise with CloseRate below it; a time under MinOnTime is 0, over
+    MaxOnTime is MaxOnTime. Recomputed every execution (the pulse ends early as the position
+    comes in); OpenedFB / ClosedFB keep the matching output off."""
+    cycle, timer = _cycle(ctx, s, _P)
+    hi, lo = s[_P["POSITIONEUMAX"]], s[_P["POSITIONEUMIN"]]
+    s[_P["POSITIONSPANINV"]] = no_span = int(hi == lo)
+    open_rate, close_rate = s[_P["OPENRATE"]], s[_P["CLOSERATE"]]
+    s[_P["OPENRATEINV"]] = int(not open_rate > 0.0)
+    s[_P["CLOSERATEINV"]] = int(not close_rate > 0.0)
+    max_on, min_on, dead = s[_P["MAXONTIME"]], s[_P["MINONTIME"]], s[_P["DEADTIME"]]
+    s[_P["MAXONTIMEINV"]] = bad = int(max_on < 0.0 or (cycle > 0.0 and max_on > cycle))
+    if bad:
+        max_on = cycle
+    s[_P["MINONTIMEINV"]] = bad = int(not 0.0 <= min_on <= max_on)
+    if bad:
+        min_on = 0.0
+    s[_P["DEADTIMEINV"]] = bad = int(dead < 0.0 or (cycle > 0.0 and dead > cycle))
+    if bad:
+        dead = 0.0
+
+    open_t = close_t = 0.0
+    if not no_span:
+        pos = (s[_P["POSITION"]] - lo) / (hi - lo) * 100.0
+        sp = (s[_P["SP"]] - lo) / (hi - lo) * 100.0
+        s[_P["POSITIONPERCENT"]], s[_P["SPPERCENT"]] = f32(pos), f32(sp)
+        s[_P["POSITIONPCTINV"]] = int(not 0.0 <= pos <= 100.0)
+        s[_P["SPPERCENTINV"]] = int(not 0.0 <= sp <= 100.0)
+        err = min(max(sp, 0.0), 100.0) - min(max(pos, 0.0), 100.0)
+        if err > 0.0 and not s[_P["OPENRATEINV"]]:
+            open_t = err / open_rate + dead
+        elif err < 0.0 and not s[_P["CLOSERATEINV"]]:
+            close_t = -err / close_rate + dead
+    else:
+        s[_P["POSITIONPCTINV"]] = s[_P["SPPERCENTINV"]] = 0
+
+    def limit(t: float) -> float:
+        return 0.0 if t < min_on else min(t, max_on)
+
+    open_t, close_t = limit(open_t), limit(close_t)
+    if timer is None:
+        open_t = close_t = 0.0
+    s[_P["OPENTIME"]], s[_P["CLOSETIME"]] = f32(open_t), f32(close_t)
+    s[_P["OPENOUT"]] = int(timer is not None and timer < open_t and not s[_P["OPENEDFB"]])
+    s[_P["CLOSEOUT"]] = int(timer is not None and timer < close_t and not s[_P["CLOSEDFB"]])
+    s[_P["INSTRUCTFAULT"]] = int(any(s[i] for i in _P_INVS))
+    pack_status(s, _P_WORDS)
+    s[_P["ENABLEOUT"]] = 1
+
+
+@prescan("POSP")
+def posp_prescan(ctx: ExecContext, rung: bool, s: list) -> None:
+    s[_P["CYCLETIMER"]] = 0.0
+    s[_P["LASTRUN"]] = -1.0

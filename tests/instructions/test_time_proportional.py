@@ -92,3 +92,81 @@ def test_prescan_restarts_the_cycle() -> None:
     ctx.now_ms = 900.0
     srtp(s, ctx)  # a new cycle from 0: on
     assert g(s, "HeatOut") == (1,)
+
+
+# ------------------------------------------------------------------ POSP
+PI = struct_type("POSITION_PROP").index
+
+
+def posp(s: list, ctx: ExecContext | None = None, **members: object) -> list:
+    for name, v in members.items():
+        s[PI[name.upper()]] = v
+    tp.posp(ctx or ExecContext(), True, s)
+    return s
+
+
+def gp(s: list, *names: str) -> tuple[object, ...]:
+    return tuple(s[PI[n.upper()]] for n in names)
+
+
+def _valve(**members: object) -> list:
+    base: dict[str, object] = dict(
+        PositionEUMax=200.0, CycleTime=4.0, OpenRate=10.0, CloseRate=5.0,
+        MaxOnTime=4.0, MinOnTime=0.5, Deadtime=0.25,
+    )  # fmt: skip
+    return new_struct("POSITION_PROP", **(base | members))
+
+
+def test_open_pulse_through_run(tmp_path: Path) -> None:
+    src = (
+        "VAR v : POSITION_PROP; END_VAR\n"
+        "v.SP := 100.0; v.Position := 60.0; v.PositionEUMax := 200.0; v.CycleTime := 4.0;\n"
+        "v.OpenRate := 10.0; v.CloseRate := 5.0; v.MaxOnTime := 4.0; v.MinOnTime := 0.5;\n"
+        "v.Deadtime := 0.25;\nPOSP(v);\n"
+    )
+    watch = ["v.OpenOut", "v.CloseOut", "v.OpenTime", "v.SPPercent", "v.PositionPercent"]
+    rows, report = trace(tmp_path, src, ".st", 17, watch, 250.0)
+    # SP 100 of 0..200 = 50 %, position 60 = 30 %: 20 % to open at 10 %/s = 2 s, + 0.25 s
+    # dead time = 2.25 s of the 4 s cycle. 250 ms scans: timer 0 .. 2.0 below 2.25 (9 scans
+    # on), 2.25 .. 3.75 off (7), then the next cycle starts at 4 s
+    assert [r["v.OpenOut"] for r in rows] == ["1"] * 9 + ["0"] * 7 + ["1"]
+    assert {r["v.CloseOut"] for r in rows} == {"0"}
+    assert {(r["v.OpenTime"], r["v.SPPercent"], r["v.PositionPercent"]) for r in rows} == {
+        ("2.25", "50.0", "30.0")
+    }
+    assert report["diagnostics"] == []
+
+
+def test_close_pulse_limits_and_end_feedbacks() -> None:
+    s = _valve(SP=40.0, Position=100.0)  # 20 % - 50 % = -30 %: close 30 / 5 + .25 = 6.25 s
+    posp(s)
+    assert gp(s, "CloseTime", "OpenTime", "CloseOut") == (4.0, 0.0, 1)  # limited to 4 s
+    posp(s, ClosedFB=1)  # already fully closed: no close pulse
+    assert gp(s, "CloseOut", "CloseTime") == (0, 4.0)
+    posp(s, ClosedFB=0, SP=99.0)  # 49.5 - 50 = -0.5 %: 0.1 + 0.25 = 0.35 s < MinOnTime 0.5
+    assert gp(s, "CloseTime", "CloseOut") == (0.0, 0)
+    posp(s, SP=160.0, OpenedFB=1)  # 80 - 50 = 30 %: 3 + .25 s to open, but fully open
+    assert gp(s, "OpenTime", "OpenOut") == (3.25, 0)
+
+
+def test_posp_invalid_settings() -> None:
+    s = _valve(SP=120.0, Position=100.0)
+    posp(s, OpenRate=0.0)  # OpenRateInv bit 2 + InstructFault = 5; no open pulse
+    assert gp(s, "Status", "OpenOut") == (5, 0)
+    posp(s, OpenRate=10.0, CloseRate=-1.0)  # bit 3 -> 9
+    assert gp(s, "Status", "OpenOut") == (9, 1)
+    posp(s, CloseRate=5.0, MaxOnTime=9.0)  # above the 4 s cycle: bit 4 -> 17, uses 4 s
+    assert gp(s, "Status") == (17,)
+    posp(s, MaxOnTime=1.0, MinOnTime=2.0)  # min above max: bit 5 -> 33, uses 0
+    # 10 % / 10 + .25 = 1.25 s, limited to MaxOnTime 1 s
+    assert gp(s, "Status", "OpenTime") == (33, 1.0)
+    posp(s, MinOnTime=0.0, Deadtime=-1.0)  # bit 6 -> 65, dead time 0: 1 s
+    assert gp(s, "Status", "OpenTime") == (65, 1.0)
+    posp(s, Deadtime=0.0, Position=220.0)  # 110 %: PositionPctInv bit 7 -> 129
+    assert gp(s, "Status", "PositionPercent") == (129, 110.0)
+    posp(s, Position=100.0, SP=-20.0)  # -10 %: SPPercentInv bit 8 -> 257
+    assert gp(s, "Status", "SPPercent") == (257, -10.0)
+    posp(s, SP=100.0, PositionEUMin=200.0)  # no span: bit 9 -> 513, no pulses
+    assert gp(s, "Status", "OpenOut", "CloseOut") == (513, 0, 0)
+    posp(s, PositionEUMin=0.0, CycleTime=-4.0)  # CycleTimeInv bit 1 -> 3, outputs off
+    assert gp(s, "Status", "OpenOut", "CloseOut") == (3, 0, 0)
