@@ -1,5 +1,5 @@
 """SRTP (split range time proportional) and POSP (position proportional), 1756-RM006;
-decisions 0183 (SRTP) and 0184 (POSP). Both pulse on/off outputs at the start of each cycle
+decision 0183. Both pulse on/off outputs at the start of each cycle
 of a free-running cycle timer.
 
 SRTP:
@@ -124,7 +124,7 @@ _P_INVS = tuple(
 
 @implements("POSP")
 def posp(ctx: ExecContext, rung: bool, s: list) -> None:
-    """Open/close pulses proportional to the position error, decision 0184:
+    """Open/close pulses proportional to the position error, decision 0183:
     OpenTime = (SPPercent - PositionPercent) / OpenRate + Deadtime when SP is above the
     position, CloseTime likewise with CloseRate below it; a time under MinOnTime is 0, over
     MaxOnTime is MaxOnTime. Recomputed every execution (the pulse ends early as the position
