@@ -488,6 +488,7 @@ async def test_ladder_enumeration_labels_are_the_lower_case_texts(
     # MATC ExecutionMode (seed): Once = 0, Continuous = 1
     assert [i.label for i in enum] == ["once", "continuous"]
     assert [(i.detail or "").split(":")[0] for i in enum] == ["0", "1"]
+    assert enum == list(items)  # an immediate operand (seed's Format column): its values only
 
 
 @lsp_mark
@@ -544,15 +545,25 @@ async def test_keywords_and_types(client: LanguageClient, tmp_path: Path) -> Non
 
 
 @lsp_mark
+@pytest.mark.parametrize(
+    ("tag", "decl", "type_text", "initial"),
+    [
+        ("Speed", "REAL := 2.5", "REAL", "2.5"),
+        ("Gains", "DINT[3] := [1, -2, 3]", "DINT[3]", "[1, -2, 3]"),
+        ("Delay", "TIMER := (PRE := 100)", "TIMER", "(PRE := 100)"),
+        # no initialiser: a DINT starts at 0 (SPEC 3.3 / 9.1: tags start from zero)
+        ("Count", "DINT", "DINT", "0"),
+    ],
+)
 async def test_hover_on_a_tag_gives_type_and_initial_value(
-    client: LanguageClient, tmp_path: Path
+    client: LanguageClient, tmp_path: Path, tag: str, decl: str, type_text: str, initial: str
 ) -> None:
     """SPEC 8 / 9.31: hover on a tag gives its type and initial value, as markdown."""
-    text = "VAR Speed : REAL := 2.5; END_VAR\nSpeed := Speed + 1.0;\n"
+    text = f"VAR {tag} : {decl}; END_VAR\n{tag} := {tag};\n"
     uri = await _open(client, tmp_path / "h.st", text, "st")
     md = await _hover(client, uri, 1, 1)
     assert md.kind == t.MarkupKind.Markdown
-    assert "REAL" in md.value and "2.5" in md.value
+    assert f"`{type_text}`" in md.value and f"`{initial}`" in md.value, md.value
 
 
 @lsp_mark
