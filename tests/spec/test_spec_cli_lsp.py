@@ -580,6 +580,44 @@ async def test_hover_in_ladder_shows_instruction_operands(
 
 
 @lsp_mark
+async def test_signature_help_highlights_the_active_operand_itself(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    """SPEC 8: signature help with the active operand highlighted. MAS's operands (SPEC 9.26)
+    are Axis, MotionControl, StopType, ChangeDecel, DecelRate, DecelUnits, ChangeDecelJerk,
+    DecelJerk, JerkUnits: after seven commas the active one is DecelJerk (index 7), and what
+    is highlighted is that operand, not the `DecelJerk` inside `ChangeDecelJerk`."""
+    text = (
+        "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\n"
+        "IF ax.ActualPosition > 1.0 THEN MAS(ax, c, 0, 0, 10.0, 0, 0, \nEND_IF;\n"
+    )
+    uri = await _open(client, tmp_path / "sig.st", text, "st")
+    sig = await client.text_document_signature_help_async(
+        t.SignatureHelpParams(
+            t.TextDocumentIdentifier(uri), t.Position(1, _end_of(text, 1, "0, 0, 10.0, 0, 0, "))
+        )
+    )
+    assert sig is not None and sig.active_parameter == 7
+    [info] = sig.signatures
+    assert info.label == (
+        "MAS(Axis, MotionControl, StopType, ChangeDecel, DecelRate, DecelUnits, "
+        "ChangeDecelJerk, DecelJerk, JerkUnits)"
+    )
+    assert info.parameters is not None
+    spans = []
+    for p in info.parameters:
+        label = p.label
+        if isinstance(label, str):  # a name: the client highlights its first occurrence
+            start = info.label.index(label)
+            label = (start, start + len(label))
+        spans.append(tuple(label))
+    words = [info.label[a:b] for a, b in spans]
+    assert words[7] == "DecelJerk" and info.label[: spans[7][0]].endswith("ChangeDecelJerk, ")
+    # every operand highlights its own place: the spans follow one another
+    assert [a for a, _ in spans] == sorted({a for a, _ in spans}) and len(set(spans)) == 9
+
+
+@lsp_mark
 async def test_definition_of_a_jsr_routine(client: LanguageClient, tmp_path: Path) -> None:
     """SPEC 8: go to definition of a JSR's routine (a file of the same program)."""
     sub = tmp_path / "Fill.rll"
