@@ -84,6 +84,7 @@ IMPLEMENTED = frozenset(
         "FSBM",
         "GSV",
         "HLL",
+        "HMIBC",
         "INSERT",
         "IOT",
         "ISINF@rll",

@@ -647,3 +647,30 @@ async def test_l5x_completion_inside_routine_text(client: LanguageClient, tmp_pa
     assert {"ValveA", "Step"} <= tags  # a program tag and one the routine uses
     members = {i.label for i in await _complete(client, uri, row, start + len("ValveA."))}
     assert "Cmd" in members
+
+
+# ====================================================================== 9.32 hardware
+def test_hmi_button_runs_as_with_no_terminal_connected(tmp_path: Path) -> None:
+    """SPEC 9.32: instructions that talk to hardware are not U; they run as on a controller
+    with nothing connected. HMIBC serves a PanelView 5000 button over an I/O connection:
+    with no terminal no press is ever seen, so Out is 0 even if the program set it, and
+    EnableOut follows the rung (decision 0151)."""
+    st = tmp_path / "b.st"
+    st.write_text("VAR b : HMIBC; END_VAR\nb.Out := TRUE;\nb.ProgFB := TRUE;\nHMIBC(b);\n")
+    assert json.loads(logixst("check", st, "--format", "json", timeout=60).out) == []
+    r = logixst("run", st, "--scans", "2", "--json", "--watch", "b", timeout=60)
+    assert r.code == 0, r.err
+    report = json.loads(r.out)
+    assert report["unsupported"] == []
+    b = report["tags"]["b"]
+    # ST always executes: EnableOut 1; Out cleared; the program's ProgFB kept
+    assert (b["EnableOut"], b["Out"], b["ProgFB"]) == (True, False, True)
+    rll = tmp_path / "b.rll"
+    rll.write_text("VAR b : HMIBC; go : BOOL; END_VAR\nXIC(go)HMIBC(b);\n")
+    for go, enable_out in (("0", False), ("1", True)):
+        r = logixst(
+            "run", rll, "--scans", "1", "--set", f"go={go}", "--json", "--watch", "b", timeout=60
+        )
+        assert r.code == 0, r.err
+        b = json.loads(r.out)["tags"]["b"]
+        assert (b["EnableIn"], b["EnableOut"], b["Out"]) == (enable_out, enable_out, False)
