@@ -326,6 +326,41 @@ def test_lines_and_columns_are_one_based_in_every_format(tmp_path: Path) -> None
     assert (region["startLine"], region["startColumn"]) == (1, 1)
 
 
+def test_github_file_property_escapes_a_comma(tmp_path: Path) -> None:
+    """SPEC 6: `github` workflow annotations, written as GitHub's runner reads them: a `,`
+    in the file property is %2C (a bare one would end the property)."""
+    folder = tmp_path / "line 1,2"
+    folder.mkdir()
+    p = folder / "m.st"
+    # E101 at line 2, column 6; the message names the tag `pct`
+    p.write_text("VAR n : DINT; END_VAR\nn := pct + 1;\n")
+    r = logixst("check", p, "--format", "github", timeout=60)
+    assert r.code == 1
+    [line] = r.out.splitlines()
+    escaped = str(p).replace(",", "%2C")
+    assert line.startswith(f"::error file={escaped},line=2,col=6::E101 ")
+    assert "," not in line.split("::")[1].split(",line=")[0]
+
+
+def test_github_message_percent_is_escaped(tmp_path: Path) -> None:
+    """SPEC 6: a `%` in a message is written %25 (GitHub decodes %25, %0D, %0A)."""
+    p = tmp_path / "m.rll"
+    # MAM SpeedUnits takes `Units per sec` or `% of Maximum`; `of Maximum` is unknown (E108)
+    # and the did-you-mean names the value with its `%`
+    p.write_text(
+        "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; go : BOOL; cd : REAL[4]; END_VAR\n"
+        "XIC(go)MAM(ax,c,0,10,100,of Maximum,100,Units per sec2,100,Units per sec2,"
+        "Trapezoidal,100,100,Units per sec3,Disabled,Programmed,0,0,0,cd);\n"
+    )
+    text = logixst("check", p, "--format", "json", timeout=60)
+    [d] = json.loads(text.out)
+    assert d["code"] == "E108" and "%" in d["message"]
+    r = logixst("check", p, "--format", "github", timeout=60)
+    [line] = r.out.splitlines()
+    message = line.split("::", 2)[2]
+    assert message == f"E108 {d['message']}".replace("%", "%25")
+
+
 PFL_TWICE = (
     "VAR f : DINT := 7; n, i : DINT; END_VAR\n"
     "FOR i := 1 TO 3 DO\n"
