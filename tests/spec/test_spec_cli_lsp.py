@@ -575,6 +575,7 @@ async def test_keywords_and_types(client: LanguageClient, tmp_path: Path) -> Non
     statement = await _complete(client, uri, 4, 0)
     keywords = {i.label for i in statement if i.kind == t.CompletionItemKind.Keyword}
     assert {"IF", "CASE", "FOR", "WHILE", "REPEAT"} <= keywords
+    assert "n" in {i.label for i in statement if i.kind == t.CompletionItemKind.Variable}
     types = {i.label for i in await _complete(client, uri, 2, len("  q : "))}
     assert {"BOOL", "DINT", "REAL", "TIMER", "AXIS_VIRTUAL", "CAM_PROFILE", "Pt"} <= types
 
@@ -682,6 +683,9 @@ async def test_l5x_completion_inside_routine_text(client: LanguageClient, tmp_pa
     assert {"ValveA", "Step"} <= tags  # a program tag and one the routine uses
     members = {i.label for i in await _complete(client, uri, row, start + len("ValveA."))}
     assert "Cmd" in members
+    # hover on `Step`: a DINT controller tag the export gives no data for, so it starts at 0
+    md = await _hover(client, uri, row, start + len("ValveA.Cmd := S"))
+    assert "`DINT`" in md.value and "initial value: `0`" in md.value
 
 
 # ====================================================================== 9.32 hardware
