@@ -101,10 +101,12 @@ class LogixServer(LanguageServer):
         if an is None:  # closed, or text `check` would refuse as input: nothing to show
             doc = self.docs.get(uri)
             if doc is not None:
+                # the reason first: an editor (or test) that reacts to the empty diagnostics
+                # has already been told why (messages arrive in the order sent)
+                self.tell_refusal(uri)
                 self.text_document_publish_diagnostics(
                     t.PublishDiagnosticsParams(uri=uri, diagnostics=[], version=doc.version)
                 )
-                self.tell_refusal(uri)
             return
         self.refusals.pop(uri, None)
         diags = []
