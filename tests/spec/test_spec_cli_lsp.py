@@ -670,6 +670,33 @@ async def test_definition_of_a_jsr_routine(client: LanguageClient, tmp_path: Pat
 
 
 @lsp_mark
+async def test_semantic_tokens_classify_the_text(client: LanguageClient, tmp_path: Path) -> None:
+    """SPEC 8: semantic tokens. Decoded with the legend the server announced: keywords, tags,
+    types, instructions, numbers and comments where they stand."""
+    text = "VAR n : DINT; ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; END_VAR\nn := n + 12; // up\n"
+    text += "IF n > 1 THEN MSO(ax, c); END_IF;\n"
+    uri = await _open(client, tmp_path / "tok.st", text, "st")
+    provider = INITIALIZED[0].capabilities.semantic_tokens_provider
+    assert provider is not None
+    legend = provider.legend.token_types
+    result = await client.text_document_semantic_tokens_full_async(
+        t.SemanticTokensParams(t.TextDocumentIdentifier(uri))
+    )
+    assert result is not None
+    data, line, col, found = list(result.data), 0, 0, {}
+    for k in range(0, len(data), 5):  # relative encoding of the LSP specification
+        d_line, d_col, length, kind = data[k : k + 4]
+        line, col = line + d_line, (col + d_col if d_line == 0 else d_col)
+        found[text.splitlines()[line][col : col + length], line] = legend[kind]
+    lowered = {k: v.lower() for k, v in found.items()}
+    assert lowered[("VAR", 0)] == "keyword" and lowered[("IF", 2)] == "keyword"
+    assert lowered[("n", 1)] == "variable" and lowered[("ax", 2)] == "variable"
+    assert lowered[("DINT", 0)] == "type" and lowered[("AXIS_VIRTUAL", 0)] == "type"
+    assert lowered[("MSO", 2)] == "function"
+    assert lowered[("12", 1)] == "number" and lowered[("// up", 1)] == "comment"
+
+
+@lsp_mark
 async def test_l5x_completion_inside_routine_text(client: LanguageClient, tmp_path: Path) -> None:
     """SPEC 8: works on `.L5X` (positions mapped to the file): completion of tags and of
     members inside an ST routine's line of the export."""
