@@ -686,7 +686,7 @@ def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
                         "locations": [
                             {
                                 "physicalLocation": {
-                                    "artifactLocation": {"uri": d.path},
+                                    "artifactLocation": {"uri": _uri_reference(d.path)},
                                     "region": {
                                         "startLine": d.span.line,
                                         "startColumn": d.span.col,
@@ -702,6 +702,15 @@ def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
             }
         ],
     }
+
+
+def _uri_reference(path: str) -> str:
+    """SARIF's `uri` is a URI reference: the path as given (relative paths stay relative to
+    the directory `check` ran in, as code scanning wants them), with `/` separators and the
+    characters a URI cannot hold (a space, `%`, `#`) percent-encoded."""
+    from urllib.parse import quote
+
+    return quote(Path(path).as_posix(), safe="/:")  # as_posix: `\\` to `/` on Windows only
 
 
 def _print_diags(diags: list[Diagnostic]) -> None:

@@ -361,6 +361,22 @@ def test_github_message_percent_is_escaped(tmp_path: Path) -> None:
     assert message == f"E108 {d['message']}".replace("%", "%25")
 
 
+def test_sarif_locations_are_uri_references(tmp_path: Path) -> None:
+    """SPEC 6: `sarif` SARIF 2.1.0, whose artifactLocation.uri is a URI reference: a path
+    is kept as given, with a space percent-encoded (%20); a relative path stays relative."""
+    folder = tmp_path / "my programs"
+    folder.mkdir()
+    (folder / "m.st").write_text("VAR n : DINT; END_VAR\nn := zz;\n")
+    r = logixst("check", folder / "m.st", "--format", "sarif", timeout=60)
+    [result] = json.loads(r.out)["runs"][0]["results"]
+    uri = result["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
+    assert uri == str(folder / "m.st").replace(" ", "%20")
+    r = logixst("check", "my programs/m.st", "--format", "sarif", timeout=60, cwd=tmp_path)
+    [result] = json.loads(r.out)["runs"][0]["results"]
+    uri = result["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
+    assert uri == "my%20programs/m.st"
+
+
 PFL_TWICE = (
     "VAR f : DINT := 7; n, i : DINT; END_VAR\n"
     "FOR i := 1 TO 3 DO\n"
