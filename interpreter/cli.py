@@ -640,7 +640,8 @@ def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
             )
             # exactly the three properties SPEC 6 names; the code leads the message
             print(
-                f"::{kind} file={d.path},line={d.span.line},col={d.span.col}::{d.code} {d.message}"
+                f"::{kind} file={_gh(d.path, True)},line={d.span.line},col={d.span.col}"
+                f"::{_gh(f'{d.code} {d.message}')}"
             )
     elif fmt == "sarif":
         print(_json(_sarif(diags), indent=2))
@@ -650,6 +651,13 @@ def _emit_check(diags: list[Diagnostic], fmt: str) -> None:
         errors = sum(1 for d in diags if d.severity is Severity.ERROR)
         warnings = sum(1 for d in diags if d.severity is Severity.WARNING)
         print(f"{errors} error(s), {warnings} warning(s)")
+
+
+def _gh(text: str, prop: bool = False) -> str:
+    """Escape a workflow-command value as GitHub's runner decodes it: `%`, CR and LF always,
+    and in a property also `:` and `,` (a message with `% of Maximum`, a path with a comma)."""
+    text = text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    return text.replace(":", "%3A").replace(",", "%2C") if prop else text
 
 
 def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
@@ -678,7 +686,7 @@ def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
                         "locations": [
                             {
                                 "physicalLocation": {
-                                    "artifactLocation": {"uri": d.path},
+                                    "artifactLocation": {"uri": _uri_reference(d.path)},
                                     "region": {
                                         "startLine": d.span.line,
                                         "startColumn": d.span.col,
@@ -694,6 +702,15 @@ def _sarif(diags: list[Diagnostic]) -> dict[str, object]:
             }
         ],
     }
+
+
+def _uri_reference(path: str) -> str:
+    """SARIF's `uri` is a URI reference: the path as given (relative paths stay relative to
+    the directory `check` ran in, as code scanning wants them), with `/` separators and the
+    characters a URI cannot hold (a space, `%`, `#`) percent-encoded."""
+    from urllib.parse import quote
+
+    return quote(Path(path).as_posix(), safe="/:")  # as_posix: `\\` to `/` on Windows only
 
 
 def _print_diags(diags: list[Diagnostic]) -> None:

@@ -27,7 +27,7 @@ from .features.actions import actions
 from .features.diagnostics import to_editor
 from .features.hover import hover
 from .features.navigation import Location, RenameRefused, definition, references, rename
-from .features.signature import signature
+from .features.signature import Signature, signature
 from .features.symbols import Symbol, document_symbols, folding_ranges
 from .features.tokens import LEGEND, encode, semantic_tokens
 from .lines import find_line, line_start, remember
@@ -101,10 +101,12 @@ class LogixServer(LanguageServer):
         if an is None:  # closed, or text `check` would refuse as input: nothing to show
             doc = self.docs.get(uri)
             if doc is not None:
+                # the reason first: an editor (or test) that reacts to the empty diagnostics
+                # has already been told why (messages arrive in the order sent)
+                self.tell_refusal(uri)
                 self.text_document_publish_diagnostics(
                     t.PublishDiagnosticsParams(uri=uri, diagnostics=[], version=doc.version)
                 )
-                self.tell_refusal(uri)
             return
         self.refusals.pop(uri, None)
         diags = []
@@ -390,10 +392,22 @@ def signature_help(params: t.SignatureHelpParams) -> t.SignatureHelp | None:
         label=sig.label,
         documentation=t.MarkupContent(t.MarkupKind.Markdown, sig.documentation),
         parameters=[
-            t.ParameterInformation(label=name, documentation=doc) for name, doc in sig.parameters
+            t.ParameterInformation(label=span, documentation=doc)
+            for span, (_, doc) in zip(_parameter_spans(sig), sig.parameters, strict=True)
         ],
     )
     return t.SignatureHelp(signatures=[info], active_signature=0, active_parameter=sig.active)
+
+
+def _parameter_spans(sig: Signature) -> list[tuple[int, int]]:
+    """Each operand's [start, end) in the label. A name alone would be highlighted where it
+    first occurs: MAS's `DecelJerk` inside `ChangeDecelJerk`, MCD's `Speed` in `ChangeSpeed`."""
+    spans, at = [], sig.label.find("(") + 1
+    for name, _ in sig.parameters:
+        start = sig.label.index(name, at)
+        spans.append((start, start + len(name)))
+        at = start + len(name)
+    return spans
 
 
 @feature(t.TEXT_DOCUMENT_DEFINITION, empty=[])

@@ -46,6 +46,27 @@ def _header_only(text: str) -> str:
     return text[: last.end()] + "\n" if last is not None else ""
 
 
+_HEADER_RETRIES = 3  # declarations being typed at once (each blanking is one more analysis)
+
+
+def _blank_lines(text: str, errors: list[tuple[int, int]]) -> str:
+    """`text` with the line of each 1-based (line, column) syntax error emptied, the line
+    count (so every position) kept. An error at the first word of its line (`END_VAR` after
+    `q : `) belongs to the unfinished line before it, which is emptied instead."""
+    rows = text.split("\n")
+    for line, col in errors:
+        k = line - 1
+        if not 0 <= k < len(rows):
+            continue
+        if not rows[k][: col - 1].strip():
+            k -= 1
+            while k >= 0 and not rows[k].strip():
+                k -= 1
+        if k >= 0:
+            rows[k] = ""
+    return "\n".join(rows)
+
+
 def language_of(path: str) -> str | None:
     """'st', 'rll' or 'l5x' (an .L5X or .L5K export) by extension; None for other documents."""
     suffix = Path(path).suffix.lower()
@@ -147,11 +168,34 @@ class Workspace:
             header = _header_only(doc.text)
             if header:
                 others = [x for x in sources if x.path != doc.path]
-                loaded = analyse_program([Source(doc.path, header), *others], self._tags())
-                loaded.diagnostics = [d for d in loaded.diagnostics if d.path != doc.path]
+                loaded = self._header_analysis(doc.path, header, others)
         result = Analysed(doc, loaded, mine)
         self._cache[uri] = (key, result)
         return result
+
+    def _header_analysis(self, path: str, header: str, others: list[Source]) -> Loaded:
+        """The declarations of a text that does not parse. A declaration being typed
+        (`q : ` with no type yet) breaks the header too; its lines are blanked (line numbers
+        kept) so the other tags and the user types stay known to completion and hover."""
+        loaded = analyse_program([Source(path, header), *others], self._tags())
+        for _ in range(_HEADER_RETRIES):
+            broken = [
+                (d.span.line, d.span.col)
+                for d in loaded.diagnostics
+                if d.path == path and d.code[0] == "S"
+            ]
+            if not broken:
+                break
+            # the first error only: later ones are often its echo (`unexpected end of file`)
+            header = _blank_lines(header, [min(broken)])
+            retry = analyse_program([Source(path, header), *others], self._tags())
+            if len(retry.model.tags) + len(retry.model.types.user_types()) < len(
+                loaded.model.tags
+            ) + len(loaded.model.types.user_types()):
+                break  # blanking lost names (a VAR or TYPE line): keep what was known
+            loaded = retry
+        loaded.diagnostics = [d for d in loaded.diagnostics if d.path != path]
+        return loaded
 
     def _export(self, uri: str, doc: Document) -> Loaded:
         """An export's analysis: the last one patched where the edit allows (an edit inside

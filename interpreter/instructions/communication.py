@@ -1,4 +1,4 @@
-"""MSG and the ASCII serial-port instructions on a controller with nothing connected.
+"""MSG, the ASCII serial-port instructions and HMIBC on a controller with nothing connected.
 
 SPEC 9.32 and decision 0035. Nothing in logixst answers a message or sends a character, so
 these instructions show what a controller shows when the far end is missing.
@@ -251,3 +251,20 @@ def acl(ctx: ExecContext, rung: bool, ch: int, clear_read: int, clear_write: int
             c[A_ER] = 1
         _pending(ctx).clear()
     # writes never wait (they complete when started), so there is no write queue to clear
+
+
+# ------------------------------------------------------------------ HMIBC
+# An HMI button needs a PanelView 5000 terminal on an I/O connection; none is ever connected
+# here, so no press is seen (SPEC 9.32, decision 0151).
+_H = _layout("HMIBC")
+H_EIN, H_EOUT, H_OUT = _H["ENABLEIN"], _H["ENABLEOUT"], _H["OUT"]
+
+
+@implements("HMIBC")
+def hmibc(ctx: ExecContext, rung: bool, h: list) -> None:
+    """EnableIn/EnableOut follow the rung (always true in ST); an executing block reports
+    no press: Out 0. ButtonState, BitIndex and TerminalCount belong to the connection and
+    are left as they are."""
+    h[H_EIN] = h[H_EOUT] = int(rung)
+    if rung:
+        h[H_OUT] = 0

@@ -93,6 +93,7 @@ IMPLEMENTED = frozenset(
         "FSBM",
         "GSV",
         "HLL",
+        "HMIBC",
         "HPF",
         "INSERT",
         "INTG",

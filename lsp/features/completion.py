@@ -177,11 +177,13 @@ def block_items(model: ProgramModel, fb: Block, ctx: Context, program: str | Non
 
 
 def enum_items(op: Operand, ladder: bool) -> list[Item]:
-    """The operand's own enumeration values: ST label in lower case, ladder its display text."""
+    """The operand's own enumeration values, labelled with the documented text in lower case
+    (SPEC 9.31): in ST without spaces (`unitspersec`, an ST name), in ladder with them
+    (`units per sec`, as neutral text writes it; decision 0150)."""
     enum = catalog().enum(op.enum)  # type: ignore[arg-type]
     return [
         Item(
-            v.text if ladder else v.label,
+            v.text.lower() if ladder else v.label,
             Kind.ENUM_MEMBER,
             f"{v.value}: {v.doc}" if v.doc else str(v.value),
             f"{op.name} = {v.value} ({v.text})",

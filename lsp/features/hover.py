@@ -93,23 +93,54 @@ def tag_markdown(tag: Tag) -> str:
     ]
     if tag.alias_of is not None:
         lines.append(f"alias of {tag.alias_of.name}")
-    init = _initial(tag)
-    if init:
-        lines.append(f"initial value: `{init}`")
+    lines.append(f"initial value: `{_initial(tag)}`")
     return "\n\n".join(lines)
 
 
+_INIT_CHARS = 200  # an export's array data can be megabytes: the hover shows its start
+
+
 def _initial(tag: Tag) -> str:
+    """The tag's initial value as ST writes it (SPEC 8: hover gives type and initial value);
+    with no initialiser, the zero the controller starts from."""
+    from interpreter.semantics.types import Elementary
+
+    if tag.init is None:
+        t = tag.type
+        if isinstance(t, Elementary):
+            return "FALSE" if t.is_bool else "0.0" if t.is_real else "0"
+        return "''" if getattr(t, "is_string", False) else "(the type's defaults)"
+    out: list[str] = []
+    _render(tag.init, out)
+    text = "".join(out)
+    return text if len(text) <= _INIT_CHARS else text[: _INIT_CHARS - 3] + "..."
+
+
+def _render(init: object, out: list[str]) -> None:
+    """Append `init` as ST initialiser text to `out`, stopping once it is long enough."""
     from interpreter.syntax import nodes as n
 
-    init = tag.init
+    if sum(map(len, out)) > _INIT_CHARS:
+        return
     if isinstance(init, n.Literal):
-        return init.text
-    if isinstance(init, n.Unary) and isinstance(init.operand, n.Literal):
-        return f"-{init.operand.text}"
-    if init is not None:
-        return "(structure or array initialiser)"
-    return ""
+        out.append(init.text)
+    elif isinstance(init, n.Unary) and isinstance(init.operand, n.Literal):
+        out.append(f"{'-' if init.op == '-' else 'NOT '}{init.operand.text}")
+    elif isinstance(init, n.ArrayInit):
+        out.append("[")
+        for i, item in enumerate(init.items):
+            if i:
+                out.append(", ")
+            _render(item, out)
+        out.append("]")
+    elif isinstance(init, n.StructInit):
+        out.append("(")
+        for i, (name, _, value) in enumerate(init.members):
+            out.append(f"{', ' if i else ''}{name} := ")
+            _render(value, out)
+        out.append(")")
+    else:
+        out.append("(an expression)")
 
 
 def code_markdown(code: str) -> str:

@@ -109,7 +109,9 @@ async def test_tag_completion_offers_fitting_types_only(
     assert sorted(i.label for i in controls) == ["ctl", "dac"]
 
 
-async def test_ladder_enumeration_uses_display_text(client: LanguageClient, tmp_path: Path) -> None:
+async def test_ladder_enumeration_uses_the_lower_case_text(
+    client: LanguageClient, tmp_path: Path
+) -> None:
     text = (
         "VAR ax : AXIS_VIRTUAL; c : MOTION_INSTRUCTION; go : BOOL; END_VAR\n"
         "XIC(go)MAM(ax,c,0,10,100,\n"
@@ -117,7 +119,8 @@ async def test_ladder_enumeration_uses_display_text(client: LanguageClient, tmp_
     uri = await open_doc(client, tmp_path / "r.rll", text)
     items = await complete(client, uri, t.Position(1, len("XIC(go)MAM(ax,c,0,10,100,")))
     labels = [i.label for i in items if i.kind == t.CompletionItemKind.EnumMember]
-    assert "Units per sec" in labels  # MAM SpeedUnits in the ladder display form
+    # MAM SpeedUnits: the documented text in lower case (SPEC 9.31), spaced as ladder writes it
+    assert "units per sec" in labels
 
 
 async def test_member_completion_on_axis_motion_instruction_and_udt(
