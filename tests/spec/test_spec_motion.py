@@ -1,0 +1,423 @@
+"""SPEC audit of section 5 (Motion) and 9.20-9.30 (session 6): one test per concrete SPEC
+statement that tests/motion_programs/ and tests/motion/ do not already show through the
+`logixst` command (they cover most of it; this file fills the gaps the acceptance suite
+would probe: MCCM geometry run end to end, enumeration words, link breaking, PLCopen
+output conventions, ...).
+
+Each docstring quotes the SPEC item; the expected values are worked out by hand in the
+comments from SPEC's words, the seeds and closed-form geometry, never taken from the
+program's output.
+
+Timing used throughout (SPEC 9.1-9.3): 1 ms scans, planner updates every 2 ms before the
+scan starting then; an instruction executed in the scan at t = 0 takes effect at the update
+t0 = 2 ms. A trace row holds the values at the end of its scan.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import pytest
+
+T0 = 0.002  # start update of an instruction executed in scan 0
+CUP = 0.002  # coarse update period, s
+F32 = 2e-4  # float32 rounding of positions below ~100 units
+
+
+class Tr:
+    """A `--trace` CSV read back: columns by watch expression, rows by scan."""
+
+    def __init__(self, rows: list[list[str]]) -> None:
+        self.names = rows[0]
+        self.rows = [[float(x) for x in r] for r in rows[1:]]
+
+    def col(self, name: str) -> list[float]:
+        j = self.names.index(name)
+        return [r[j] for r in self.rows]
+
+    def at(self, t: float, name: str) -> float:
+        """Value in the row of the scan starting at t seconds (1 ms scans)."""
+        row = self.rows[round(t / 0.001)]
+        assert abs(row[0] - t) < 1e-9, (t, row[0])
+        return row[self.names.index(name)]
+
+    def first(self, name: str, value: float) -> float:
+        """Start time of the first scan whose row shows `name` == value."""
+        j = self.names.index(name)
+        for r in self.rows:
+            if r[j] == value:
+                return r[0]
+        raise AssertionError(f"{name} never became {value}")
+
+    def points(self, *names: str) -> list[tuple[float, ...]]:
+        return list(zip(*(self.col(n) for n in names), strict=True))
+
+
+def trace(st, src: str, scans: int, *watch: str) -> Tr:  # type: ignore[no-untyped-def]
+    """Run `src` through `logixst run --trace --json`; it must run (exit 0)."""
+    p = st.write("m.st", src)
+    out = Path(st.tmp) / "trace.csv"
+    argv = ["run", str(p), "--scans", str(scans), "--trace", str(out), "--json"]
+    for w in watch:
+        argv += ["--watch", w]
+    r = st.cli(*argv)
+    assert r.code == 0, (r.code, r.err, r.out[:2000])
+    assert "Traceback" not in r.err
+    with out.open(newline="") as fh:
+        return Tr(list(csv.reader(fh)))
+
+
+# ------------------------------------------------------------------------- MCCM geometry
+# Two independent 2D systems XY and UV (and 3D XYZ / UVW): one run shows two cases.
+# Vector profile of every MCCM below: V = 10 units/s, A = D = 100 units/s^2 (trapezoid):
+# each ramp lasts V/A = 0.1 s and covers V^2/(2A) = 0.5 units, so a path of length L takes
+# T = L/V + V/A; executed at t = 0 it starts at t0 = 2 ms and reaches the arc length s at
+# t0 + 0.1 + (s - 0.5)/V while at speed.
+CS_HEAD = """VAR
+  X, Y, Z, U, V, W : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  XY : COORDINATE_SYSTEM := (Axes := [X, Y], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  UV : COORDINATE_SYSTEM := (Axes := [U, V], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4 : MOTION_INSTRUCTION;
+  k : DINT;
+"""
+CS3_HEAD = """VAR
+  X, Y, Z, U, V, W : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  XYZ : COORDINATE_SYSTEM := (Axes := [X, Y, Z], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  UVW : COORDINATE_SYSTEM := (Axes := [U, V, W], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4 : MOTION_INSTRUCTION;
+  k : DINT;
+"""
+
+
+def mccm(cs: str, ctl: str, pos: str, ctype: int, aux: str, direction: int, mtype: int = 0) -> str:
+    return (
+        f"MCCM({cs}, {ctl}, {mtype}, {pos}, {ctype}, {aux}, {direction}, 10.0, unitspersec, 100.0, "
+        "unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 1, disabled, "
+        "programmed, 0.0, 0, none, 0, 0);"
+    )
+
+
+def cs_prog(head: str, decls: str, body: str) -> str:
+    return head + decls + "END_VAR\n" + body + "\nk := k + 1;\n"
+
+
+def _pc_time(t0: float, length: float) -> float:
+    """First update at or after the end of a path of `length` started at update t0."""
+    return t0 + math.ceil((length / 10.0 + 0.1) / CUP - 1e-6) * CUP
+
+
+def _on_circle(pts: list[tuple[float, ...]], centre: tuple[float, ...], r: float) -> None:
+    for p in pts:
+        assert math.dist(p, centre) == pytest.approx(r, abs=F32), (p, centre, r)
+
+
+def test_mccm_2d_cw_and_ccw_seen_from_plus_z(st) -> None:
+    """SPEC 5: Direction 2D 0 CW, 1 CCW (CW/CCW seen from +Z of the XY plane); Circle Type 1
+    Center."""
+    # start (0, 0), centre (10, 0), end (20, 0): a half circle, L = 10 pi = 31.416.
+    # Clockwise seen from +Z about (10, 0), the leftmost point moves up: CW passes (10, +10),
+    # CCW passes (10, -10). PC at the first update >= t0 + 3.1416 + 0.1 = 3.2436 -> 3.244
+    decls = "  e : REAL[2] := [20.0, 0.0];\n  ctr : REAL[2] := [10.0, 0.0];\n"
+    body = (
+        "IF k = 0 THEN " + mccm("XY", "c1", "e", 1, "ctr", 0) + mccm("UV", "c2", "e", 1, "ctr", 1)
+    )
+    body += " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 3300, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
+               "c1.ER", "c2.ER")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
+    cw, ccw = (
+        tr.points("X.CommandPosition", "Y.CommandPosition"),
+        tr.points("U.CommandPosition", "V.CommandPosition"),
+    )
+    _on_circle(cw, (10.0, 0.0), 10.0)
+    _on_circle(ccw, (10.0, 0.0), 10.0)
+    assert min(y for _, y in cw) >= -F32 and max(y for _, y in cw) == pytest.approx(10.0, abs=1e-3)
+    assert max(y for _, y in ccw) <= F32 and min(y for _, y in ccw) == pytest.approx(
+        -10.0, abs=1e-3
+    )
+    assert cw[-1] == (20.0, 0.0) and ccw[-1] == (20.0, 0.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 10 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 10 * math.pi))
+
+
+def test_mccm_2d_full_directions_make_one_revolution_back_to_the_start(st) -> None:
+    """SPEC 5 / 9.28: Direction 2 CW Full, 3 CCW Full: the move is one whole revolution back
+    to the start point (Position only helps define the circle)."""
+    # start (0, 0), centre (10, 0), Position (20, 0): the circle of radius 10; L = 20 pi,
+    # T = 2 pi + 0.1; PC at the first update >= 0.002 + 6.3832 -> 6.384.
+    # A quarter of the way (s = 5 pi, at t0 + 0.1 + (5 pi - 0.5)/10 = 1.6228 s): CW at
+    # (10, +10), CCW at (10, -10); half way (s = 10 pi, t = 3.2436 s) both at (20, 0)
+    decls = "  e : REAL[2] := [20.0, 0.0];\n  ctr : REAL[2] := [10.0, 0.0];\n"
+    body = (
+        "IF k = 0 THEN " + mccm("XY", "c1", "e", 1, "ctr", 2) + mccm("UV", "c2", "e", 1, "ctr", 3)
+    )
+    body += " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 6450, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC")  # fmt: skip
+    t_q = T0 + 0.1 + (5 * math.pi - 0.5) / 10.0
+    row = round(t_q / CUP) * CUP  # the update nearest the quarter point (|dt| <= 1 ms: 0.01 units)
+    assert tr.at(row, "X.CommandPosition") == pytest.approx(10.0, abs=0.02)
+    assert tr.at(row, "Y.CommandPosition") == pytest.approx(10.0, abs=1e-3)
+    assert tr.at(row, "U.CommandPosition") == pytest.approx(10.0, abs=0.02)
+    assert tr.at(row, "V.CommandPosition") == pytest.approx(-10.0, abs=1e-3)
+    t_h = round((T0 + 0.1 + (10 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    assert tr.at(t_h, "X.CommandPosition") == pytest.approx(20.0, abs=1e-3)
+    assert tr.at(t_h, "U.CommandPosition") == pytest.approx(20.0, abs=1e-3)
+    for name in ("X", "Y", "U", "V"):
+        assert tr.col(f"{name}.CommandPosition")[-1] == pytest.approx(0.0, abs=1e-6)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+
+
+def test_mccm_2d_centre_end_equal_start_is_a_full_circle_cw_too(st) -> None:
+    """SPEC 9.28: 2D Center with end = start is a full circle in any direction (CW 0 and
+    CW Full 2 here; tests/motion_programs covers CCW)."""
+    # start = end = (0, 0), centre (10, 0): L = 20 pi; CW: at the quarter point (10, +10)
+    decls = "  e : REAL[2];\n  ctr : REAL[2] := [10.0, 0.0];\n"
+    body = (
+        "IF k = 0 THEN " + mccm("XY", "c1", "e", 1, "ctr", 0) + mccm("UV", "c2", "e", 1, "ctr", 2)
+    )
+    body += " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 6450, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
+               "c1.ER", "c2.ER")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
+    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    for a, b in (("X", "Y"), ("U", "V")):
+        assert tr.at(row, f"{a}.CommandPosition") == pytest.approx(10.0, abs=0.02)
+        assert tr.at(row, f"{b}.CommandPosition") == pytest.approx(10.0, abs=1e-3)
+        _on_circle(tr.points(f"{a}.CommandPosition", f"{b}.CommandPosition"), (10.0, 0.0), 10.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+
+
+def test_mccm_negative_radius_takes_the_long_arc(st) -> None:
+    """SPEC 5: Circle Type 2 Radius: radius > 0 arc <= 180 deg, < 0 arc >= 180 deg."""
+    # (0, 0) -> (10, 10), R = -10. The two circles of radius 10 through both points have
+    # centres (10, 0) and (0, 10).
+    # CW (XY): about (0, 10) the start is the bottom and the end the right point; clockwise
+    #   bottom -> left -> top -> right is 270 deg: the long arc, through (-10, 10).
+    # CCW (UV): about (10, 0) the start is the left point and the end the top; counter-
+    #   clockwise left -> bottom -> right -> top is 270 deg, through (10, -10) and (20, 0).
+    # L = 1.5 pi * 10 = 15 pi; PC at the first update >= 0.002 + 4.7124 + 0.1 -> 4.816
+    decls = "  e : REAL[2] := [10.0, 10.0];\n"
+    body = (
+        "IF k = 0 THEN "
+        + mccm("XY", "c1", "e", 2, "-10.0", 0)
+        + mccm("UV", "c2", "e", 2, "-10.0", 1)
+    )
+    body += " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 4850, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC")  # fmt: skip
+    cw = tr.points("X.CommandPosition", "Y.CommandPosition")
+    ccw = tr.points("U.CommandPosition", "V.CommandPosition")
+    _on_circle(cw, (0.0, 10.0), 10.0)
+    _on_circle(ccw, (10.0, 0.0), 10.0)
+    assert min(x for x, _ in cw) == pytest.approx(-10.0, abs=1e-3)
+    assert min(y for _, y in ccw) == pytest.approx(-10.0, abs=1e-3)
+    assert max(x for x, _ in ccw) == pytest.approx(20.0, abs=1e-3)
+    assert cw[-1] == (10.0, 10.0) and ccw[-1] == (10.0, 10.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 15 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 15 * math.pi))
+
+
+def test_mccm_exact_semicircle_radius_is_valid_for_both_signs(st) -> None:
+    """SPEC 9.28: an exact semicircle with Radius type (|R| = chord/2) is valid for both
+    signs."""
+    # (0, 0) -> (20, 0), |R| = 10 = chord / 2: the only circle has centre (10, 0); CW (0)
+    # passes the top (10, 10) for +10 and -10 alike; L = 10 pi
+    decls = "  e : REAL[2] := [20.0, 0.0];\n"
+    body = (
+        "IF k = 0 THEN "
+        + mccm("XY", "c1", "e", 2, "10.0", 0)
+        + mccm("UV", "c2", "e", 2, "-10.0", 0)
+    )
+    body += " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 3300, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
+               "c1.ER", "c2.ER")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
+    for a, b in (("X", "Y"), ("U", "V")):
+        pts = tr.points(f"{a}.CommandPosition", f"{b}.CommandPosition")
+        _on_circle(pts, (10.0, 0.0), 10.0)
+        assert max(y for _, y in pts) == pytest.approx(10.0, abs=1e-3)
+        assert pts[-1] == (20.0, 0.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 10 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 10 * math.pi))
+
+
+@pytest.mark.parametrize(
+    ("decls", "call", "err"),
+    [
+        # via type with end = start (2D): 45
+        ("  e : REAL[2];\n  a : REAL[2] := [10.0, 10.0];\n", ("e", 0, "a", 0), 45),
+        # radius type with end = start: 45
+        ("  e : REAL[2];\n", ("e", 2, "10.0", 0), 45),
+        # centre (10, 0): R1 = |start - c| = 10, R2 = |(20, 10) - c| = 14.14;
+        # |R1 - R2| = 4.14 > 0.15 * 10 = 1.5: 46
+        ("  e : REAL[2] := [20.0, 10.0];\n  a : REAL[2] := [10.0, 0.0];\n", ("e", 1, "a", 0), 46),
+        # radius below 0.001: 49
+        ("  e : REAL[2] := [10.0, 10.0];\n", ("e", 2, "0.0005", 0), 49),
+        # chord |(10, 10)| = 14.14 > 2 |R| = 10: the radius cannot span the points: 49
+        ("  e : REAL[2] := [10.0, 10.0];\n", ("e", 2, "5.0", 0), 49),
+        ("  e : REAL[2] := [10.0, 10.0];\n", ("e", 2, "-5.0", 1), 49),
+    ],
+)
+def test_mccm_geometry_errors(st, decls: str, call: tuple, err: int) -> None:  # type: ignore[type-arg]
+    """SPEC 5: geometry errors 45 end = start where not allowed, 46 start/end radius mismatch
+    (|R1-R2| > 0.15 R1), 49 radius too small (< 0.001 or cannot span the points); reported
+    in the executing scan (ER, no DN), nothing moves."""
+    pos, ctype, aux, direction = call
+    body = "IF k = 0 THEN " + mccm("XY", "c1", pos, ctype, aux, direction) + " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 10, "c1.ER", "c1.ERR", "c1.DN", "c1.IP",
+               "X.CommandPosition", "Y.CommandPosition")  # fmt: skip
+    assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.DN", "c1.IP")] == [1, err, 0, 0]
+    assert tr.col("X.CommandPosition")[-1] == 0.0 and tr.col("Y.CommandPosition")[-1] == 0.0
+
+
+def test_mccm_radius_mismatch_within_15_percent_is_accepted(st) -> None:
+    """SPEC 5: 46 only when |R1-R2| > 0.15 R1: a smaller mismatch runs to the end point."""
+    # centre (10, 0): R1 = 10, end (20, 5): R2 = sqrt(100 + 25) = 11.18, |R1 - R2| = 1.18
+    # <= 1.5: no error, and the move ends exactly at the programmed end point
+    decls = "  e : REAL[2] := [20.0, 5.0];\n  a : REAL[2] := [10.0, 0.0];\n"
+    body = "IF k = 0 THEN " + mccm("XY", "c1", "e", 1, "a", 0) + " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 4000, "c1.ER", "c1.PC",
+               "X.CommandPosition", "Y.CommandPosition")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0 and tr.col("c1.PC")[-1] == 1
+    assert tr.col("X.CommandPosition")[-1] == pytest.approx(20.0, abs=1e-5)
+    assert tr.col("Y.CommandPosition")[-1] == pytest.approx(5.0, abs=1e-5)
+
+
+def test_mccm_center_incremental_is_relative_to_the_start_for_both_move_types(st) -> None:
+    """SPEC 5: Circle Type 3 Center Incremental (the centre counted from the start point
+    whatever the Move Type); Move Type 1 Incremental with Center counts the centre and the end
+    from the start too."""
+    # MCLM to (10, 0) first on both systems (L = 10, T = 1.1 s, done by 1.104 s); at
+    # k = 1200 (t = 1.2 s) from (10, 0):
+    #   XY: Move Type 0, Center Incremental [10, 0], Position (30, 0): centre (20, 0)
+    #   UV: Move Type 1, Center [10, 0], Position [20, 0]: centre (20, 0), end (30, 0)
+    # both the CW half circle (10, 0) -> (20, 10) -> (30, 0), L = 10 pi, starting at the
+    # update 1.202 s: PC at the first update >= 1.202 + 3.2416 -> 4.444
+    decls = (
+        "  p : REAL[2] := [10.0, 0.0];\n  e1 : REAL[2] := [30.0, 0.0];\n"
+        "  e2 : REAL[2] := [20.0, 0.0];\n  a : REAL[2] := [10.0, 0.0];\n"
+    )
+    line = (
+        "MCLM({cs}, {c}, 0, p, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, "
+        "trapezoidal, 100.0, 100.0, %oftime, 1, disabled, programmed, 0.0, 0, none, 0, 0);"
+    )
+    body = (
+        "IF k = 0 THEN " + line.format(cs="XY", c="c3") + line.format(cs="UV", c="c4") + " END_IF;\n"
+        "IF k = 1200 THEN " + mccm("XY", "c1", "e1", 3, "a", 0, 0)
+        + mccm("UV", "c2", "e2", 1, "a", 0, 1) + " END_IF;"
+    )  # fmt: skip
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 4500, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
+               "c1.ER", "c2.ER")  # fmt: skip
+    assert tr.at(1.2, "c1.ER") == 0 and tr.at(1.2, "c2.ER") == 0
+    for a, b in (("X", "Y"), ("U", "V")):
+        pts = tr.points(f"{a}.CommandPosition", f"{b}.CommandPosition")[1200:]
+        _on_circle(pts, (20.0, 0.0), 10.0)
+        assert max(y for _, y in pts) == pytest.approx(10.0, abs=1e-3)
+        assert pts[-1] == (30.0, 0.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(1.202, 10 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(1.202, 10 * math.pi))
+
+
+def test_mccm_3d_shortest_and_longest(st) -> None:
+    """SPEC 5: 3 primary axes; 3D Direction 0 Shortest, 1 Longest (Circle Type Center)."""
+    # start (0, 0, 0), centre (10, 0, 0), end (10, 0, 10): a circle of radius 10 in the XZ
+    # plane. Shortest: the 90 deg arc through c + 10 (-1, 0, 1)/sqrt 2 = (2.93, 0, 7.07),
+    # L = 5 pi, PC at the first update >= 0.002 + 1.5708 + 0.1 -> 1.674.
+    # Longest: the 270 deg arc the other way round, through (10, 0, -10) and (20, 0, 0),
+    # L = 15 pi, PC -> 4.816
+    decls = "  e : REAL[3] := [10.0, 0.0, 10.0];\n  a : REAL[3] := [10.0, 0.0, 0.0];\n"
+    body = "IF k = 0 THEN " + mccm("XYZ", "c1", "e", 1, "a", 0) + mccm("UVW", "c2", "e", 1, "a", 1)
+    body += " END_IF;"
+    names = [f"{n}.CommandPosition" for n in "XYZUVW"]
+    tr = trace(st, cs_prog(CS3_HEAD, decls, body), 4850, *names, "c1.PC", "c2.PC", "c1.ER",
+               "c2.ER")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
+    short, long_ = tr.points(*names[:3]), tr.points(*names[3:])
+    _on_circle(short, (10.0, 0.0, 0.0), 10.0)
+    _on_circle(long_, (10.0, 0.0, 0.0), 10.0)
+    assert all(abs(p[1]) < 1e-9 for p in short + long_)
+    assert min(p[2] for p in short) >= -F32 and max(p[0] for p in short) <= 10.0 + F32
+    assert min(p[2] for p in long_) == pytest.approx(-10.0, abs=1e-3)
+    assert max(p[0] for p in long_) == pytest.approx(20.0, abs=1e-3)
+    assert short[-1] == (10.0, 0.0, 10.0) and long_[-1] == (10.0, 0.0, 10.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 5 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 15 * math.pi))
+
+
+def test_mccm_3d_full_circles(st) -> None:
+    """SPEC 5 / 9.28: 3D Direction 2 Shortest Full, 3 Longest Full: one whole revolution
+    back to the start point; Position fixes the circle and which way round is "shortest"."""
+    # the circle of the test above; L = 20 pi, PC -> 6.384; at the quarter point
+    # (s = 5 pi, t = 1.6228 s) Shortest Full is at the Position (10, 0, 10) (the short way
+    # first), Longest Full at the opposite side (10, 0, -10)
+    decls = "  e : REAL[3] := [10.0, 0.0, 10.0];\n  a : REAL[3] := [10.0, 0.0, 0.0];\n"
+    body = "IF k = 0 THEN " + mccm("XYZ", "c1", "e", 1, "a", 2) + mccm("UVW", "c2", "e", 1, "a", 3)
+    body += " END_IF;"
+    names = [f"{n}.CommandPosition" for n in "XYZUVW"]
+    tr = trace(st, cs_prog(CS3_HEAD, decls, body), 6450, *names, "c1.PC", "c2.PC")
+    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    assert tr.at(row, "X.CommandPosition") == pytest.approx(10.0, abs=0.02)
+    assert tr.at(row, "Z.CommandPosition") == pytest.approx(10.0, abs=1e-3)
+    assert tr.at(row, "U.CommandPosition") == pytest.approx(10.0, abs=0.02)
+    assert tr.at(row, "W.CommandPosition") == pytest.approx(-10.0, abs=1e-3)
+    for n in names:
+        assert tr.col(n)[-1] == pytest.approx(0.0, abs=1e-6)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+
+
+def test_mccm_3d_via_point_decides_the_way_round(st) -> None:
+    """SPEC 5: Circle Type 0 Via in 3D: the arc passes the via point."""
+    # (0, 0, 0) -> (20, 0, 0) via (10, 7.0710678, 7.0710678), 10 from (10, 0, 0): the circle
+    # has that centre, radius 10, and lies in the plane y = z; the half circle through the via;
+    # L = 10 pi, half way (t = 0.002 + 0.1 + (5 pi - 0.5)/10 = 1.6228 s) at the via point
+    decls = "  e : REAL[3] := [20.0, 0.0, 0.0];\n  a : REAL[3] := [10.0, 7.0710678, 7.0710678];\n"
+    body = "IF k = 0 THEN " + mccm("XYZ", "c1", "e", 0, "a", 0) + " END_IF;"
+    names = [f"{n}.CommandPosition" for n in "XYZ"]
+    tr = trace(st, cs_prog(CS3_HEAD, decls, body), 3300, *names, "c1.PC", "c1.ER")
+    assert tr.at(0.0, "c1.ER") == 0
+    pts = tr.points(*names)
+    _on_circle(pts, (10.0, 0.0, 0.0), 10.0)
+    assert all(abs(p[1] - p[2]) < F32 for p in pts)
+    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    assert tr.at(row, "Y.CommandPosition") == pytest.approx(7.0711, abs=1e-3)
+    assert pts[-1] == (20.0, 0.0, 0.0)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 10 * math.pi))
+
+
+@pytest.mark.parametrize(
+    ("e", "a", "ctype", "err"),
+    [
+        # 3D centre collinear with start and end: no plane: 44
+        ("[20.0, 0.0, 0.0]", "[10.0, 0.0, 0.0]", 1, 44),
+        # 3D centre with end = start: 45 (only 2D allows it)
+        ("[0.0, 0.0, 0.0]", "[10.0, 0.0, 0.0]", 1, 45),
+        # 3D via collinear: 44
+        ("[20.0, 0.0, 0.0]", "[10.0, 0.0, 0.0]", 0, 44),
+    ],
+)
+def test_mccm_3d_geometry_errors(st, e: str, a: str, ctype: int, err: int) -> None:
+    """SPEC 5: 44 collinear, 45 end = start where not allowed (3D Center)."""
+    decls = f"  e : REAL[3] := {e};\n  a : REAL[3] := {a};\n"
+    body = "IF k = 0 THEN " + mccm("XYZ", "c1", "e", ctype, "a", 0) + " END_IF;"
+    tr = trace(st, cs_prog(CS3_HEAD, decls, body), 4, "c1.ER", "c1.ERR", "c1.DN")
+    assert [tr.at(0.0, n) for n in ("c1.ER", "c1.ERR", "c1.DN")] == [1, err, 0]
+
+
+def test_coordinate_system_tolerance_defaults(st) -> None:
+    """SPEC 9.28: COORDINATE_SYSTEM members CommandTolerance and ActualTolerance default to
+    0.1 and 0.01 units."""
+    src = cs_prog(CS_HEAD, "", "")
+    r = st.run(src, "XY.CommandTolerance", "XY.ActualTolerance")
+    assert r.code == 0, r.err
+    assert r.tags["XY.CommandTolerance"] == pytest.approx(0.1)
+    assert r.tags["XY.ActualTolerance"] == pytest.approx(0.01)
