@@ -421,3 +421,249 @@ def test_coordinate_system_tolerance_defaults(st) -> None:
     assert r.code == 0, r.err
     assert r.tags["XY.CommandTolerance"] == pytest.approx(0.1)
     assert r.tags["XY.ActualTolerance"] == pytest.approx(0.01)
+
+
+# ------------------------------------------------------------------------- MATC / MCCP
+MATC_HEAD = """VAR
+  A, B : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4, cc : MOTION_INSTRUCTION;
+  k : DINT;
+"""
+
+
+def test_matc_contribution_is_relative_to_the_profile_start_value(st) -> None:
+    """SPEC 5: MATC position contribution `dir * DistanceScaling * (P(t / TimeScaling) -
+    P(0))` added to the command position; 9.22 Continuous: each pass adds P(end) - P(0)."""
+    # profile (0, 5) (1, 15): P(0) = 5, net 10 per pass; the axes start at 0 and do not jump
+    # to 5. A: Same, DS 2, TS 1, Once: 2 (P(t) - 5) = 20 t, held at 20 after 1 s.
+    # B: Opposite, DS 1, TS 0.5, Continuous: -(P(2t) - 5) per pass, passes of 0.5 s adding
+    # -10 each: -20 t. Cams start at t0 = 2 ms; t counts from there.
+    decls = """  off : CAM_PROFILE[2] := [(Master := 0.0, Slave := 5.0, SegmentType := 0),
+                           (Master := 1.0, Slave := 15.0, SegmentType := 0)];
+"""
+    body = """IF k = 0 THEN
+  MATC(A, c1, 0, off, 2.0, 1.0, once, immediate, 0.0, none, timedrivenmode);
+  MATC(B, c2, 1, off, 1.0, 0.5, continuous, immediate, 0.0, none, timedrivenmode);
+END_IF;"""
+    tr = trace(st, cs_prog(MATC_HEAD, decls, body), 1300, "A.CommandPosition",
+               "B.CommandPosition")  # fmt: skip
+    for t in (0.0, 0.002, 0.252, 0.502, 0.752, 1.002, 1.2, 1.298):  # update instants
+        a = 20.0 * min(max(t - T0, 0.0), 1.0)
+        b = -20.0 * max(t - T0, 0.0)
+        assert tr.at(t, "A.CommandPosition") == pytest.approx(a, abs=1e-4), t
+        assert tr.at(t, "B.CommandPosition") == pytest.approx(b, abs=1e-4), t
+
+
+def test_matc_ended_by_a_stop_gives_its_profile_use_back(st) -> None:
+    """SPEC 9.23: Profile Status +1 when a cam using it becomes active, -1 when it completes
+    or is terminated; 9.26: MAS All ends time cams (IP and TimeCamStatus cleared, PC not set)
+    -- here also MAS Time Cam (StopType 7)."""
+    # lin calculated: Status 2; two continuous cams (A, B) in use: 4; MAS All on A at scan 100
+    # (update 0.102): 3; MAS Time Cam on B at scan 200 (update 0.202): 2
+    decls = """  lin : CAM_PROFILE[2] := [(Master := 0.0, Slave := 0.0, SegmentType := 0),
+                           (Master := 1.0, Slave := 10.0, SegmentType := 0)];
+"""
+    body = """IF k = 0 THEN
+  MATC(A, c1, 0, lin, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode);
+  MATC(B, c2, 0, lin, 1.0, 1.0, continuous, immediate, 0.0, none, timedrivenmode);
+END_IF;
+IF k = 100 THEN MAS(A, c3, 0, 1, 1000.0, 0, 0, 0.0, 0); END_IF;
+IF k = 200 THEN MAS(B, c4, 7, 1, 1000.0, 0, 0, 0.0, 0); END_IF;"""
+    tr = trace(st, cs_prog(MATC_HEAD, decls, body), 300, "lin[0].Status", "c1.IP", "c1.PC",
+               "c2.IP", "c2.PC", "A.TimeCamStatus", "B.TimeCamStatus")  # fmt: skip
+    assert [tr.at(t, "lin[0].Status") for t in (0.05, 0.101, 0.102, 0.201, 0.202, 0.299)] == [
+        4, 4, 3, 3, 2, 2,
+    ]  # fmt: skip
+    assert [tr.at(0.102, n) for n in ("c1.IP", "c1.PC", "A.TimeCamStatus")] == [0, 0, 0]
+    assert [tr.at(0.202, n) for n in ("c2.IP", "c2.PC", "B.TimeCamStatus")] == [0, 0, 0]
+
+
+def test_camming_ignores_the_axis_maximum_speed_and_accel(st) -> None:
+    """SPEC 9.25: camming ignores the axis's maximum speed/accel (seed)."""
+    # axis limits 1 unit/s and 1 unit/s^2; the cam asks for 10 units/s at once: followed
+    # exactly, 10 (t - t0) for 1 s
+    decls = """  C : AXIS_VIRTUAL := (MaximumSpeed := 1.0, MaximumAccel := 1.0, MaximumDecel := 1.0);
+  lin : CAM_PROFILE[2] := [(Master := 0.0, Slave := 0.0, SegmentType := 0),
+                           (Master := 1.0, Slave := 10.0, SegmentType := 0)];
+"""
+    body = "IF k = 0 THEN MATC(C, c1, 0, lin, 1.0, 1.0, once, immediate, 0.0, none, 0); END_IF;"
+    tr = trace(st, cs_prog(MATC_HEAD, decls, body), 1100, "C.CommandPosition", "c1.ER",
+               "c1.PC")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0
+    for t in (0.102, 0.502, 1.002):
+        assert tr.at(t, "C.CommandPosition") == pytest.approx(10.0 * (t - T0), abs=1e-4)
+    assert tr.at(1.002, "c1.PC") == 1
+
+
+def test_mccp_cubic_run_meeting_a_linear_segment(st) -> None:
+    """SPEC 9.20: cubic segments form a clamped cubic spline (position, velocity, acceleration
+    continuous within the run) with the given start/end slopes; where a cubic run meets a
+    linear segment the joint slope is the linear segment's slope. 9.21: MCCP(MotionControl,
+    Cam, Length, StartSlope, EndSlope, CamProfile), DN in its scan, slopes ignored at linear
+    ends."""
+    # pts: (0, 0) cubic, (1, 1) cubic, (2, 3) linear, (3, 5): a cubic run on [0, 2] and a line
+    # of slope 2 on [2, 3]. Slopes: m0 = StartSlope 0, m2 = 2 (the line's), m1 from equal
+    # second derivatives at x = 1 (unit Hermite segments):
+    #   6 (p0 - p1) + 2 m0 + 4 m1 = 6 (p2 - p1) - 4 m1 - 2 m2
+    #   -> m1 = (6 (p2 - p0) - 2 m0 - 2 m2) / 8 = (18 - 0 - 4) / 8 = 1.75
+    # Hermite at u = 0.5 (h00 = h01 = 0.5, h10 = 0.125, h11 = -0.125):
+    #   P(0.5) = 0.5 * 0 + 0.125 * 0 + 0.5 * 1 - 0.125 * 1.75 = 0.28125
+    #   P(1.5) = 0.5 * 1 + 0.125 * 1.75 + 0.5 * 3 - 0.125 * 2 = 1.96875
+    #   P(2.5) = 3 + 2 * 0.5 = 4 (the EndSlope 9 is ignored: the end is linear)
+    # lin2: two linear points with slopes 5 / 5: ignored, P(x) = 2 x
+    # The cams (TS = DS = 1) start at t0 = 2 ms: P(x) is read at t = x + 0.002
+    decls = """  pts : CAM[4] := [(Master := 0.0, Slave := 0.0, SegmentType := 1),
+                   (Master := 1.0, Slave := 1.0, SegmentType := 1),
+                   (Master := 2.0, Slave := 3.0, SegmentType := 0),
+                   (Master := 3.0, Slave := 5.0, SegmentType := 0)];
+  l2 : CAM[2] := [(Master := 0.0, Slave := 0.0, SegmentType := 0), (Master := 1.0, Slave := 2.0, SegmentType := 0)];
+  prof : CAM_PROFILE[4];
+  prof2 : CAM_PROFILE[2];
+"""
+    body = """IF k = 0 THEN
+  MCCP(cc, pts, 4, 0.0, 9.0, prof);
+  MCCP(c3, l2, 2, 5.0, 5.0, prof2);
+  MATC(A, c1, 0, prof, 1.0, 1.0, once, immediate, 0.0, none, 0);
+  MATC(B, c2, 0, prof2, 1.0, 1.0, once, immediate, 0.0, none, 0);
+END_IF;"""
+    tr = trace(st, cs_prog(MATC_HEAD, decls, body), 3100, "A.CommandPosition",
+               "B.CommandPosition", "cc.DN", "c3.DN", "prof[0].Status")  # fmt: skip
+    assert [tr.at(0.0, n) for n in ("cc.DN", "c3.DN")] == [1, 1]
+    got = [tr.at(t, "A.CommandPosition") for t in (0.502, 1.002, 1.502, 2.002, 2.502, 3.002)]
+    assert got == pytest.approx([0.28125, 1.0, 1.96875, 3.0, 4.0, 5.0], abs=1e-4)
+    assert [tr.at(t, "B.CommandPosition") for t in (0.252, 0.502)] == pytest.approx(
+        [0.5, 1.0], abs=1e-4
+    )
+
+
+# ------------------------------------------------------------------------- MDAC
+MD_HEAD = """VAR
+  big : CAM_PROFILE[2] := [(Master := 0.0, Slave := 0.0, SegmentType := 0),
+                           (Master := 100.0, Slave := 200.0, SegmentType := 0)];
+  M, M2, S, T, U : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4, c5, c6 : MOTION_INSTRUCTION;
+  G : MOTION_GROUP;
+  k : DINT;
+"""
+
+
+def test_mdac_master_offset_move_type_by_text_and_number(st) -> None:
+    """SPEC 5 / 9.24: MDAC Motion Type Master Offset Move(4), accepted as text
+    `masteroffsetmove` and as the number; Master Reference Actual(0)/Command(1) as text or
+    number. The MDAC is IP while its link stands."""
+    body = (
+        """IF k = 0 THEN MDAC(S, M, c1, masteroffsetmove, actual); MDAC(T, M2, c2, 4, 0); END_IF;"""
+    )
+    r = st.run(cs_prog(MD_HEAD, "", body), "c1.IP", "c1.ER", "c2.IP", "c2.ER", "c1.DN", scans=5)
+    assert r.code == 0, r.err
+    assert r.tags == {"c1.IP": True, "c1.ER": False, "c2.IP": True, "c2.ER": False, "c1.DN": True}
+
+
+def test_mdac_links_broken_by_shutdowns_of_slave_or_master(st) -> None:
+    """SPEC 5: MDAC link broken by MASD/MGSD on the slave, MASD/MGSD on the master; 9.24: a
+    broken link clears the MDAC's IP."""
+    # S <- M (c1), T <- M2 (c2), U <- M2 (c3). MASD on the slave S in scan 10: c1's IP
+    # clears at the next update (0.012); MASD on the master M2 in scan 20: c2 and c3 clear at
+    # 0.022. A second run: MGSD of the group in scan 10 breaks every link (0.012).
+    body = """IF k = 0 THEN MDAC(S, M, c1, all, command); MDAC(T, M2, c2, all, command);
+  MDAC(U, M2, c3, move, command); END_IF;
+IF k = 10 THEN MASD(S, c4); END_IF;
+IF k = 20 THEN MASD(M2, c5); END_IF;"""
+    tr = trace(st, cs_prog(MD_HEAD, "", body), 30, "c1.IP", "c2.IP", "c3.IP")
+    assert [tr.at(t, "c1.IP") for t in (0.0, 0.011, 0.012)] == [1, 1, 0]
+    assert [tr.at(t, "c2.IP") for t in (0.0, 0.021, 0.022)] == [1, 1, 0]
+    assert [tr.at(t, "c3.IP") for t in (0.0, 0.021, 0.022)] == [1, 1, 0]
+    body = """IF k = 0 THEN MDAC(S, M, c1, all, command); END_IF;
+IF k = 10 THEN MGSD(G, c4); END_IF;"""
+    tr = trace(st, cs_prog(MD_HEAD, "", body), 20, "c1.IP")
+    assert [tr.at(t, "c1.IP") for t in (0.0, 0.011, 0.012)] == [1, 1, 0]
+
+
+def test_mdac_time_scaling_scales_master_distance(st) -> None:
+    """SPEC 9.24: master distance counts from the master's position when the slave's
+    master-driven motion starts; TimeScaling scales master distance in master-driven mode."""
+    # master M jogs 10 units/s with accel 1e6 (at speed within the first update): it starts
+    # at the update 0.002 and m(t) = 10 (t - 0.002) - 0.5e-5... taken as 10 (t - t0) within
+    # 1e-4. The MATC (master-driven, TS 2, DS 1) runs big: P(x) = 2 x against master
+    # distance d / TS: slave = 2 * d / 2 = d = m(t) - m(start). It is executed in scan 100
+    # and starts at the update 0.102 where m = 1.0: slave = m(t) - 1.
+    body = """IF k = 0 THEN
+  MAJ(M, c2, forward, 10.0, unitspersec, 1000000.0, unitspersec2, 1000000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+  MDAC(S, M, c1, timecam, command);
+END_IF;
+IF k = 100 THEN MATC(S, c3, 0, big, 1.0, 2.0, continuous, immediate, 0.0, none, masterdrivenmode); END_IF;"""
+    tr = trace(st, cs_prog(MD_HEAD, "", body), 600, "M.CommandPosition", "S.CommandPosition",
+               "c3.ER")  # fmt: skip
+    assert tr.at(0.1, "c3.ER") == 0
+    m_start = tr.at(0.102, "M.CommandPosition")
+    assert m_start == pytest.approx(1.0, abs=1e-4)
+    for t in (0.102, 0.2, 0.4, 0.599):
+        m = tr.at(t, "M.CommandPosition")
+        assert tr.at(t, "S.CommandPosition") == pytest.approx(m - m_start, abs=1e-4), t
+
+
+# ------------------------------------------------------------------------- PLCopen
+PLC_HEAD = """VAR
+  M : AXIS_VIRTUAL;
+  S : AXIS_VIRTUAL := (ActualPosition := 7.0);
+  mj : MOTION_INSTRUCTION;
+  sel : MC_CamTableSelect;
+  camIn : MC_CamIn;
+  go : BOOL := TRUE;
+  k : DINT;
+  off : CAM[2] := [(Master := 0.0, Slave := 1.0, SegmentType := 0), (Master := 10.0, Slave := 3.0, SegmentType := 0)];
+END_VAR
+"""
+PLC_JOG = (
+    "IF k = 0 THEN MAJ(M, mj, forward, 10.0, unitspersec, 1000000.0, unitspersec2, 1000000.0, "
+    "unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none); END_IF;\n"
+)
+
+
+def test_camin_start_mode_numbers_and_relative_offset(st) -> None:
+    """SPEC 9.29: StartMode words absolute 0, relative 1, ... (the number works as the word);
+    9.30: relative start: effective slave offset = SlaveOffset + the slave's position at
+    coupling; MC_CamTableSelect gives Done and a CamTableID."""
+    # OFF: CAM(x) = 1 + 0.2 x on [0, 10], non-periodic, MasterAbsolute, SlaveAbsolute FALSE
+    # (the interaction table keeps relative relative). Slave at 7 when it couples,
+    # SlaveOffset 2: Y = CAM(X) + 2 + 7 = 10 + 0.2 master
+    src = PLC_HEAD + (
+        "sel(Master := M, Slave := S, CamTable := off, Execute := go, Periodic := FALSE, "
+        "MasterAbsolute := TRUE, SlaveAbsolute := FALSE);\n"
+        "camIn(Master := M, Slave := S, Execute := go AND sel.Done, CamTableID := sel.CamTableID, "
+        "StartMode := 1, SlaveOffset := 2.0);\n" + PLC_JOG + "k := k + 1;\n"
+    )
+    tr = trace(st, src, 600, "M.CommandPosition", "S.CommandPosition", "camIn.InSync",
+               "camIn.Error", "sel.Done", "sel.Error", "sel.CamTableID")  # fmt: skip
+    assert tr.at(0.0, "sel.Done") == 1 and tr.at(0.0, "sel.Error") == 0
+    assert tr.at(0.0, "sel.CamTableID") != 0
+    for t in (0.1, 0.3, 0.599):
+        m = tr.at(t, "M.CommandPosition")
+        assert tr.at(t, "S.CommandPosition") == pytest.approx(10.0 + 0.2 * m, abs=1e-4), t
+        assert tr.at(t, "camIn.InSync") == 1 and tr.at(t, "camIn.Error") == 0
+
+
+# ------------------------------------------------------------------------- MAOC
+def test_maoc_cam_range_ends_are_inclusive(st) -> None:
+    """SPEC 9.27: range ends inclusive: a cam armed at CamArm = CamEnd with the axis at rest is
+    inside its range (locked, in process, no PC for a Once cam)."""
+    src = """VAR
+  A : AXIS_VIRTUAL;
+  arm : MOTION_INSTRUCTION;
+  cam : OUTPUT_CAM[1] := [(OutputBit := 0, LatchType := 1, UnlatchType := 1, Left := 10.0, Right := 20.0)];
+  comp : OUTPUT_COMPENSATION[1];
+  outw, inw, k : DINT;
+END_VAR
+IF k = 0 THEN MAOC(A, 0, arm, outw, inw, cam, 0.0, 100.0, comp, once, immediate, 0.0, 100.0, actual); END_IF;
+k := k + 1;
+"""
+    r = st.run(src, "arm.ER", "arm.IP", "arm.PC", "A.OutputCamLockStatus", "A.OutputCamStatus",
+               scans=10)  # fmt: skip
+    assert r.code == 0, r.err
+    assert r.tags == {
+        "arm.ER": False,
+        "arm.IP": True,
+        "arm.PC": False,
+        "A.OutputCamLockStatus": 1,
+        "A.OutputCamStatus": 1,
+    }
