@@ -667,3 +667,26 @@ k := k + 1;
         "A.OutputCamLockStatus": 1,
         "A.OutputCamStatus": 1,
     }
+
+
+def test_mcs_with_no_system_decel_is_error_54_naming_the_system(st) -> None:
+    """SPEC 9.26: MCS has MAS's operands with a coordinate system (StopType, ChangeDecel
+    0 No / 1 Yes, DecelRate, ...). With ChangeDecel No the system's MaximumDecel is used; a
+    system whose MaximumDecel is 0 cannot stop: error 54, and the MCCM seed's EXERR -1 (the
+    coordinate system, not one of its axes). With ChangeDecel Yes the operand is used."""
+    src = """VAR
+  S, T, S2, T2 : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  ST : COORDINATE_SYSTEM := (Axes := [S, T]);
+  ST2 : COORDINATE_SYSTEM := (Axes := [S2, T2]);
+  c1, c2 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN
+  MCS(ST, c1, 0, 0, 0.0, 0, 0, 0.0, 0);
+  MCS(ST2, c2, 0, 1, 100.0, 0, 0, 0.0, 0);
+END_IF;
+k := k + 1;
+"""
+    r = st.run(src, "c1.ER", "c1.ERR", "c1.EXERR", "c2.ER", "c2.DN", scans=3)
+    assert r.code == 0, r.err
+    assert r.tags == {"c1.ER": True, "c1.ERR": 54, "c1.EXERR": -1, "c2.ER": False, "c2.DN": True}
