@@ -137,11 +137,13 @@ def stop_path(
     def apply(ev: Events) -> None:
         paths._sync_out()
         paths.stop_system(cs_id, h, decel, jerk, ev)
-        if stop_all:
-            for ax in cs.axes:
-                group.stop(ax, StopType.ALL)
 
     group.after_update(apply)
+    if stop_all:
+        # requested now, so they apply at the same update as the path stop (SPEC 9.3), after
+        # it: the stopping system is then left alone by the axes' stops
+        for ax in cs.axes:
+            group.stop(ax, StopType.ALL)
     return StartResult(handle=h)
 
 

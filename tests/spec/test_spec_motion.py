@@ -690,3 +690,41 @@ k := k + 1;
     r = st.run(src, "c1.ER", "c1.ERR", "c1.EXERR", "c2.ER", "c2.DN", scans=3)
     assert r.code == 0, r.err
     assert r.tags == {"c1.ER": True, "c1.ERR": 54, "c1.EXERR": -1, "c2.ER": False, "c2.DN": True}
+
+
+def test_mcs_all_stops_member_axes_and_breaks_links_at_the_next_update(st) -> None:
+    """SPEC 9.26 / 9.3: MCS (MAS's operands with a coordinate system) StopType All also stops
+    the single-axis motion of the system's axes -- and, per the MDAC seed, MCS All on the
+    slave breaks its MDAC link while MCS Coordinated Move does not; all of it takes effect at
+    the next planner update after the executing scan."""
+    # S jogs at 10 units/s (accel 1000: at speed from 0.012). MCS All on ST = [S, T] in
+    # scan 100: at the update 0.102 the jog's stop starts with S's MaximumDecel 1000, so
+    # v(0.104) = 10 - 1000 * 0.002 = 8 and v = 0 from 0.112. MDAC S <- M (c1) breaks at
+    # 0.102; MDAC S2 <- M (c2) survives MCS Coordinated Move on ST2.
+    src = """VAR
+  M, S, T, S2, T2 : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  ST : COORDINATE_SYSTEM := (Axes := [S, T], MaximumDecel := 1000.0);
+  ST2 : COORDINATE_SYSTEM := (Axes := [S2, T2], MaximumDecel := 1000.0);
+  c1, c2, cj, cs1, cs2 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN
+  MDAC(S, M, c1, all, command); MDAC(S2, M, c2, all, command);
+  MAJ(S, cj, forward, 10.0, unitspersec, 1000.0, unitspersec2, 1000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+END_IF;
+IF k = 100 THEN
+  MCS(ST, cs1, all, no, 0.0, unitspersec2, no, 0.0, unitspersec3);
+  MCS(ST2, cs2, coordinatedmove, no, 0.0, unitspersec2, no, 0.0, unitspersec3);
+END_IF;
+k := k + 1;
+"""
+    tr = trace(st, src, 130, "S.CommandVelocity", "cj.IP", "c1.IP", "c2.IP", "cs1.DN",
+               "cs1.ER", "cs2.ER")  # fmt: skip
+    assert [tr.at(0.1, n) for n in ("cs1.DN", "cs1.ER", "cs2.ER")] == [1, 0, 0]
+    assert [tr.at(t, "S.CommandVelocity") for t in (0.1, 0.102, 0.104, 0.106)] == pytest.approx(
+        [10.0, 10.0, 8.0, 6.0], abs=1e-4
+    )
+    assert tr.at(0.112, "S.CommandVelocity") == 0.0 and tr.at(0.101, "cj.IP") == 1
+    assert tr.at(0.102, "cj.IP") == 0  # the stop ends the jog's process at once
+    assert [tr.at(t, "c1.IP") for t in (0.101, 0.102)] == [1, 0]
+    assert tr.at(0.129, "c2.IP") == 1
