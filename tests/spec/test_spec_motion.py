@@ -728,3 +728,46 @@ k := k + 1;
     assert tr.at(0.102, "cj.IP") == 0  # the stop ends the jog's process at once
     assert [tr.at(t, "c1.IP") for t in (0.101, 0.102)] == [1, 0]
     assert tr.at(0.129, "c2.IP") == 1
+
+
+def test_pending_master_driven_cam_keeps_the_active_cams_master_and_mode(st) -> None:
+    """SPEC 5: MATC Pending blends at the end of the current pass; masterdrivenmode uses the
+    master distance from MDAC; pending master taken at the next slave motion start. The MDAC
+    seed's example: MDAC1 (S <- M), MATC1 immediate, MDAC2 (S <- M2) while MATC1 moves, MATC2
+    pending: MATC2 runs with MATC1's master M. A pending cam in another instruction mode than
+    the active one is an error (MATC seed: both cams in the same mode; decision 0101: 105)."""
+    # M jogs at 10 units/s, M2 at 20 units/s (accel 1e6: at speed within the first update),
+    # both from the update 0.002, where MATC1 (master driven) starts too. p1: slave = 2 d on
+    # d in [0, 1] master units, Once. MATC2 (same profile, pending) takes over at d = 1 with
+    # the leftover distance, so with M the slave is 2 d for d in [0, 2] and then holds 4
+    # (with M2 it would climb at 40 units/s instead of 20). MATC3 pending in time-driven mode
+    # while a master-driven cam is active: ERR 105, no DN.
+    src = """VAR
+  p1 : CAM_PROFILE[2] := [(Master := 0.0, Slave := 0.0, SegmentType := 0), (Master := 1.0, Slave := 2.0, SegmentType := 0)];
+  M, M2, S : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, d1, d2, j1, j2 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN
+  MAJ(M, j1, forward, 10.0, unitspersec, 1000000.0, unitspersec2, 1000000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+  MAJ(M2, j2, forward, 20.0, unitspersec, 1000000.0, unitspersec2, 1000000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+  MDAC(S, M, d1, timecam, command);
+  MATC(S, c1, 0, p1, 1.0, 1.0, once, immediate, 0.0, none, masterdrivenmode);
+END_IF;
+IF k = 10 THEN
+  MDAC(S, M2, d2, timecam, command);
+  MATC(S, c2, 0, p1, 1.0, 1.0, once, pending, 0.0, none, masterdrivenmode);
+END_IF;
+IF k = 20 THEN MATC(S, c3, 0, p1, 1.0, 1.0, once, pending, 0.0, none, timedrivenmode); END_IF;
+k := k + 1;
+"""
+    tr = trace(st, src, 300, "M.CommandPosition", "S.CommandPosition", "c1.PC", "c2.DN",
+               "c2.ER", "c2.PC", "c3.ER", "c3.ERR", "c3.DN")  # fmt: skip
+    assert [tr.at(0.01, n) for n in ("c2.DN", "c2.ER")] == [1, 0]
+    assert [tr.at(0.02, n) for n in ("c3.ER", "c3.ERR", "c3.DN")] == [1, 105, 0]
+    m0 = tr.at(0.002, "M.CommandPosition")
+    for t in [0.002 * i for i in range(1, 150)]:
+        d = tr.at(t, "M.CommandPosition") - m0
+        assert tr.at(t, "S.CommandPosition") == pytest.approx(2.0 * min(d, 2.0), abs=1e-3), t
+    assert tr.at(0.15, "c1.PC") == 1 and tr.at(0.15, "c2.PC") == 0
+    assert tr.at(0.299, "c2.PC") == 1
