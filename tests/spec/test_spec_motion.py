@@ -771,3 +771,42 @@ k := k + 1;
         assert tr.at(t, "S.CommandPosition") == pytest.approx(2.0 * min(d, 2.0), abs=1e-3), t
     assert tr.at(0.15, "c1.PC") == 1 and tr.at(0.15, "c2.PC") == 0
     assert tr.at(0.299, "c2.PC") == 1
+
+
+def test_coordinated_move_on_an_axis_that_cannot_move_names_it(st) -> None:
+    """SPEC 4 / 5: a drive axis moves only with its servo on (MSO); MCLM/MCCM on a system with
+    a member axis whose servo is off or that is shut down fail like the single-axis moves
+    (5 Servo Off State, 7 Shutdown State), with the MCCM seed's EXERR: the index of the
+    offending axis in the coordinate system. Nothing moves. Decision 0140."""
+    # XY = [X, Y] drives, only X switched on (MSO in scan 0, done at the update 0.002):
+    # MCLM in scan 10 -> 5 with EXERR 1 (Y). UV = [U, V] virtual, U shut down by MASD in scan
+    # 0: MCCM in scan 10 -> 7 with EXERR 0 (U). After MSO(Y) (scan 20) the MCLM runs (c5).
+    src = """VAR
+  X, Y : AXIS_CIP_DRIVE := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  U, V : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  XY : COORDINATE_SYSTEM := (Axes := [X, Y], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  UV : COORDINATE_SYSTEM := (Axes := [U, V], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4, c5, c6 : MOTION_INSTRUCTION;
+  p : REAL[2] := [3.0, 4.0];
+  ctr : REAL[2] := [1.5, 2.0];
+  k : DINT;
+END_VAR
+IF k = 0 THEN MSO(X, c1); MASD(U, c2); END_IF;
+IF k = 10 THEN
+  MCLM(XY, c3, 0, p, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 1, disabled, programmed, 0.0, 0, none, 0, 0);
+  MCCM(UV, c4, 0, p, 1, ctr, 0, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 1, disabled, programmed, 0.0, 0, none, 0, 0);
+END_IF;
+IF k = 20 THEN MSO(Y, c6); END_IF;
+IF k = 30 THEN
+  MCLM(XY, c5, 0, p, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 1, disabled, programmed, 0.0, 0, none, 0, 0);
+END_IF;
+k := k + 1;
+"""
+    tr = trace(st, src, 40, "c3.ER", "c3.ERR", "c3.EXERR", "c3.DN", "c4.ER", "c4.ERR",
+               "c4.EXERR", "c4.DN", "c5.ER", "c5.DN", "X.CommandPosition",
+               "U.CommandPosition")  # fmt: skip
+    assert [tr.at(0.01, f"c3.{m}") for m in ("ER", "ERR", "EXERR", "DN")] == [1, 5, 1, 0]
+    assert [tr.at(0.01, f"c4.{m}") for m in ("ER", "ERR", "EXERR", "DN")] == [1, 7, 0, 0]
+    assert tr.at(0.029, "X.CommandPosition") == 0.0 and tr.at(0.039, "U.CommandPosition") == 0.0
+    assert [tr.at(0.03, n) for n in ("c5.ER", "c5.DN")] == [0, 1]
+    assert tr.at(0.039, "X.CommandPosition") > 0.0
