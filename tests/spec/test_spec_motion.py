@@ -810,3 +810,55 @@ k := k + 1;
     assert tr.at(0.029, "X.CommandPosition") == 0.0 and tr.at(0.039, "U.CommandPosition") == 0.0
     assert [tr.at(0.03, n) for n in ("c5.ER", "c5.DN")] == [0, 1]
     assert tr.at(0.039, "X.CommandPosition") > 0.0
+
+
+def test_actual_tolerance_termination_waits_for_the_actual_position(st) -> None:
+    """SPEC 5 / 9.28: termination types 0 (Actual Tolerance: PC once interpolation is done
+    and the actual position is within the system's ActualTolerance) and 1 (No Settle: PC at
+    the end of interpolation); status bits per the seed: ActualPosToleranceStatus for
+    type 0 only, kept after the move, cleared (like CommandPosToleranceStatus) when a new
+    move starts."""
+    # drive axes (their actual position lags the command, SPEC 4), servo on from 0.002; both
+    # moves (0,0) -> (3,4), L = 5, V 10, A 100: T = 0.6 s from the update 0.012, so the
+    # interpolation ends at 0.612. XY: ActualTolerance 0.001, type 0; UV: type 1.
+    # XY's second move (back to (0, 0)) executed in scan 700 starts at the update 0.702.
+    src = """VAR
+  X, Y, U, V : AXIS_CIP_DRIVE := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  XY : COORDINATE_SYSTEM := (Axes := [X, Y], ActualTolerance := 0.001, MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  UV : COORDINATE_SYSTEM := (Axes := [U, V], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4, c5, c6, c7 : MOTION_INSTRUCTION;
+  p : REAL[2] := [3.0, 4.0];
+  o : REAL[2];
+  k : DINT;
+END_VAR
+IF k = 0 THEN MSO(X, c1); MSO(Y, c2); MSO(U, c3); MSO(V, c4); END_IF;
+IF k = 10 THEN
+  MCLM(XY, c5, 0, p, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 0, disabled, programmed, 0.0, 0, none, 0, 0);
+  MCLM(UV, c6, 0, p, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 1, disabled, programmed, 0.0, 0, none, 0, 0);
+END_IF;
+IF k = 700 THEN
+  MCLM(XY, c7, 0, o, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 0, disabled, programmed, 0.0, 0, none, 0, 0);
+END_IF;
+k := k + 1;
+"""
+    tr = trace(st, src, 720, "X.ActualPosition", "Y.ActualPosition", "X.CommandPosition",
+               "Y.CommandPosition", "c5.PC", "c5.IP", "c6.PC", "XY.ActualPosToleranceStatus",
+               "UV.ActualPosToleranceStatus", "XY.CommandPosToleranceStatus")  # fmt: skip
+    assert tr.first("c6.PC", 1) == pytest.approx(0.612)  # no settle: the interpolation end
+    # type 0: the first update from 0.612 on where |actual - (3, 4)| < 0.001
+    settle = next(
+        t
+        for t in (0.612 + 0.002 * i for i in range(40))
+        if math.hypot(tr.at(t, "X.ActualPosition") - 3.0, tr.at(t, "Y.ActualPosition") - 4.0)
+        < 0.001
+    )
+    assert settle > 0.612  # the lag really is longer than the tolerance at the end
+    assert tr.first("c5.PC", 1) == pytest.approx(settle)
+    assert tr.at(settle - 0.001, "c5.IP") == 1
+    assert tr.first("XY.ActualPosToleranceStatus", 1) == pytest.approx(settle)
+    assert tr.at(0.701, "XY.ActualPosToleranceStatus") == 1  # kept after the move
+    assert set(tr.col("UV.ActualPosToleranceStatus")) == {0.0}  # type 1 never sets it
+    assert tr.at(0.701, "XY.CommandPosToleranceStatus") == 1
+    # the next move starts at the update 0.702: both tolerance bits cleared
+    assert [tr.at(0.702, n) for n in ("XY.ActualPosToleranceStatus",
+                                      "XY.CommandPosToleranceStatus")] == [0, 0]  # fmt: skip
