@@ -862,3 +862,32 @@ k := k + 1;
     # the next move starts at the update 0.702: both tolerance bits cleared
     assert [tr.at(0.702, n) for n in ("XY.ActualPosToleranceStatus",
                                       "XY.CommandPosToleranceStatus")] == [0, 0]  # fmt: skip
+
+
+def test_mccm_full_circles_by_radius_and_by_via_point(st) -> None:
+    """SPEC 9.28: with a Full direction the move is one whole revolution back to the start
+    point (Position only helps define the circle) -- Radius type (Position any other point of
+    the circle) and Via type (the via point decides the sense, Direction only says full)."""
+    # XY: Radius +10 to Position (10, 10), CW Full (2): the circle of the short CW arc, centre
+    # (10, 0) (see the radius test above); one revolution CW from (0, 0): at the quarter point
+    # (10, 10). UV: Via (10, 10), Position (20, 0), CCW Full (3): the circle through the three
+    # points has centre (10, 0); (0,0) -> (10,10) -> (20,0) turns clockwise, so the sense is
+    # CW whatever the Direction: at the quarter point (10, 10) too. L = 20 pi for both.
+    decls = "  e1 : REAL[2] := [10.0, 10.0];\n  e2 : REAL[2] := [20.0, 0.0];\n  a : REAL[2] := [10.0, 10.0];\n"
+    body = (
+        "IF k = 0 THEN " + mccm("XY", "c1", "e1", 2, "10.0", 2) + mccm("UV", "c2", "e2", 0, "a", 3)
+    )
+    body += " END_IF;"
+    tr = trace(st, cs_prog(CS_HEAD, decls, body), 6450, "X.CommandPosition",
+               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
+               "c1.ER", "c2.ER")  # fmt: skip
+    assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
+    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    for a, b in (("X", "Y"), ("U", "V")):
+        _on_circle(tr.points(f"{a}.CommandPosition", f"{b}.CommandPosition"), (10.0, 0.0), 10.0)
+        assert tr.at(row, f"{a}.CommandPosition") == pytest.approx(10.0, abs=0.02)
+        assert tr.at(row, f"{b}.CommandPosition") == pytest.approx(10.0, abs=1e-3)
+        assert tr.col(f"{a}.CommandPosition")[-1] == pytest.approx(0.0, abs=1e-6)
+        assert tr.col(f"{b}.CommandPosition")[-1] == pytest.approx(0.0, abs=1e-6)
+    assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+    assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
