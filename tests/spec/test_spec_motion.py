@@ -403,10 +403,14 @@ def test_mccm_3d_via_point_decides_the_way_round(st) -> None:
         ("[0.0, 0.0, 0.0]", "[10.0, 0.0, 0.0]", 1, 45),
         # 3D via collinear: 44
         ("[20.0, 0.0, 0.0]", "[10.0, 0.0, 0.0]", 0, 44),
+        # Radius type in a 3D system: the seed's circle table makes Radius 2D only, and its
+        # validation error there is 25 (Illegal Instruction)
+        ("[20.0, 0.0, 0.0]", "[10.0, 0.0, 0.0]", 2, 25),
     ],
 )
 def test_mccm_3d_geometry_errors(st, e: str, a: str, ctype: int, err: int) -> None:
-    """SPEC 5: 44 collinear, 45 end = start where not allowed (3D Center)."""
+    """SPEC 5: 44 collinear, 45 end = start where not allowed (3D Center); Radius is 2D only
+    (MCCM seed)."""
     decls = f"  e : REAL[3] := {e};\n  a : REAL[3] := {a};\n"
     body = "IF k = 0 THEN " + mccm("XYZ", "c1", "e", ctype, "a", 0) + " END_IF;"
     tr = trace(st, cs_prog(CS3_HEAD, decls, body), 4, "c1.ER", "c1.ERR", "c1.DN")
@@ -891,3 +895,23 @@ def test_mccm_full_circles_by_radius_and_by_via_point(st) -> None:
         assert tr.col(f"{b}.CommandPosition")[-1] == pytest.approx(0.0, abs=1e-6)
     assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
     assert tr.first("c2.PC", 1) == pytest.approx(_pc_time(T0, 20 * math.pi))
+
+
+def test_end_of_profile_is_one_scan_with_the_default_coarse_update(st) -> None:
+    """SPEC 9.30: EndOfProfile is TRUE for one scan each time the profile end is reached --
+    also when a planner update spans two scans (default 2 ms updates, 1 ms scans)."""
+    # OFF periodic on [0, 10] with the master at 10 units/s from the update 0.002: the ends
+    # are passed at master 10, 20, 30 (t ~ 1.002, 2.002, 3.002): three single-scan pulses
+    src = PLC_HEAD + (
+        "sel(Master := M, Slave := S, CamTable := off, Execute := go, Periodic := TRUE, "
+        "MasterAbsolute := TRUE, SlaveAbsolute := TRUE);\n"
+        "camIn(Master := M, Slave := S, Execute := go AND sel.Done, CamTableID := sel.CamTableID);\n"
+        + PLC_JOG
+        + "k := k + 1;\n"
+    )
+    tr = trace(st, src, 3500, "camIn.EndOfProfile", "camIn.InSync")
+    col = tr.col("camIn.EndOfProfile")
+    pulses = [i * 0.001 for i, v in enumerate(col) if v == 1]
+    assert len(pulses) == 3, pulses
+    for t, expect in zip(pulses, (1.0, 2.0, 3.0), strict=True):
+        assert t == pytest.approx(expect, abs=0.005)
