@@ -915,3 +915,35 @@ def test_end_of_profile_is_one_scan_with_the_default_coarse_update(st) -> None:
     assert len(pulses) == 3, pulses
     for t, expect in zip(pulses, (1.0, 2.0, 3.0), strict=True):
         assert t == pytest.approx(expect, abs=0.005)
+
+
+def test_mdac_one_slave_with_a_master_per_motion_type(st) -> None:
+    """SPEC 5: MDAC assigns a master for a Motion Type; the MDAC seed: one slave may follow
+    master X for its moves and master Y for its jogs at the same time (AC on both MDACs)."""
+    # M jogs at 10 units/s, M2 at 20 (both at speed within the first update). S: a master-
+    # driven MAM at 1 unit per master unit (MDAC Move -> M) and a master-driven MAJ at 1 unit
+    # per master unit (MDAC Jog -> M2), superimposed (Merge Disabled): S runs at 10 + 20 = 30
+    src = """VAR
+  M, M2, S : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4, j1, j2 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN
+  MAJ(M, j1, forward, 10.0, unitspersec, 1000000.0, unitspersec2, 1000000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+  MAJ(M2, j2, forward, 20.0, unitspersec, 1000000.0, unitspersec2, 1000000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+  MDAC(S, M, c1, move, command); MDAC(S, M2, c2, jog, command);
+END_IF;
+IF k = 10 THEN
+  MAM(S, c3, incremental, 1000.0, 1.0, unitspermasterunit, 1000000.0, unitspermasterunit2, 1000000.0, unitspermasterunit2, trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 0.0, none, 0, 0);
+  MAJ(S, c4, forward, 1.0, unitspermasterunit, 1000000.0, unitspermasterunit2, 1000000.0, unitspermasterunit2, trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 0.0, none);
+END_IF;
+k := k + 1;
+"""
+    r = st.run(src, "S.CommandVelocity", "c1.AC", "c2.AC", "c3.IP", "c4.IP", "c3.ER", "c4.ER",
+               scans=100)  # fmt: skip
+    assert r.code == 0, r.err
+    assert r.tags["S.CommandVelocity"] == pytest.approx(30.0, abs=1e-4)
+    assert {n: r.tags[n] for n in ("c1.AC", "c2.AC", "c3.IP", "c4.IP", "c3.ER", "c4.ER")} == {
+        "c1.AC": True, "c2.AC": True, "c3.IP": True, "c4.IP": True, "c3.ER": False,
+        "c4.ER": False,
+    }  # fmt: skip
