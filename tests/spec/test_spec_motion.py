@@ -947,3 +947,41 @@ k := k + 1;
         "c1.AC": True, "c2.AC": True, "c3.IP": True, "c4.IP": True, "c3.ER": False,
         "c4.ER": False,
     }  # fmt: skip
+
+
+def test_mas_all_on_a_member_axis_completes_when_the_path_is_at_rest(st) -> None:
+    """SPEC 5 / 9.26: MAS All stops all motion of the axis; on a member axis of a coordinate
+    system that is the path (brought to rest along it with the system's MaximumDecel, decision
+    0125), and the MAS completes (PC, IP cleared) when the axis is at rest, with the axis's
+    StoppingStatus set meanwhile -- not at the update where the stop starts. MGS likewise."""
+    # (0,0) -> (30,40) at 10 units/s; MAS All on X in scan 1000: from the update 1.002 the
+    # path decelerates at the system's MaximumDecel 100: 10/100 = 0.1 s, at rest at 1.102.
+    # The same with MGS on the declared group in a second system of the same group.
+    src = """VAR
+  G : MOTION_GROUP;
+  X, Y, U, V : AXIS_VIRTUAL := (MaximumSpeed := 100.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  XY : COORDINATE_SYSTEM := (Axes := [X, Y], MaximumSpeed := 20.0, MaximumAccel := 1000.0, MaximumDecel := 100.0);
+  c1, c2 : MOTION_INSTRUCTION;
+  p : REAL[2] := [30.0, 40.0];
+  k : DINT;
+END_VAR
+IF k = 0 THEN MCLM(XY, c1, 0, p, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 100.0, 100.0, %oftime, 1, disabled, programmed, 0.0, 0, none, 0, 0); END_IF;
+IF k = 1000 THEN {stop} END_IF;
+k := k + 1;
+"""
+    for stop in ("MAS(X, c2, all, no, 0.0, unitspersec2, no, 0.0, unitspersec3);",
+                 "MGS(G, c2, programmed);"):  # fmt: skip
+        tr = trace(st, src.replace("{stop}", stop), 1150, "XY.VectorCommandVelocity", "c1.IP",
+                   "c2.IP", "c2.PC", "X.StoppingStatus")  # fmt: skip
+        assert [tr.at(1.0, n) for n in ("c2.IP", "c2.PC")] == [1, 0], stop
+        assert tr.at(1.05, "XY.VectorCommandVelocity") == pytest.approx(
+            5.2, abs=1e-4
+        )  # 10 - 100 * 0.048
+        assert [tr.at(1.05, n) for n in ("c1.IP", "c2.IP", "c2.PC", "X.StoppingStatus")] == [
+            0, 1, 0, 1,
+        ], stop  # fmt: skip
+        assert [tr.at(t, "XY.VectorCommandVelocity") for t in (1.1, 1.102)] == pytest.approx(
+            [0.2, 0.0], abs=1e-4
+        )
+        assert tr.first("c2.PC", 1) == pytest.approx(1.102), stop
+        assert [tr.at(1.102, n) for n in ("c2.IP", "X.StoppingStatus")] == [0, 0], stop
