@@ -985,3 +985,38 @@ k := k + 1;
         )
         assert tr.first("c2.PC", 1) == pytest.approx(1.102), stop
         assert [tr.at(1.102, n) for n in ("c2.IP", "X.StoppingStatus")] == [0, 0], stop
+
+
+def test_move_transition_status_only_off_the_path(st) -> None:
+    """SPEC 5: MCCM/MCLM status bits per the seed. MoveTransitionStatus: set when a Command
+    Tolerance / No Decel termination is satisfied and the next move blends in -- not when
+    blending collinear moves (the machine stays on the path); cleared when the blend ends."""
+    # XY: (0,0) -> (30,40) with termination 2 (CommandTolerance 0.1), then on to (60,80):
+    # collinear. UV: the same first move, then to (60,40): a corner. First move: L = 50,
+    # T = 5.1 s from 0.002; the end point is 0.1 away (decelerating at 100) sqrt(2 * 0.1 /
+    # 100) = 0.0447 s before its end 5.102, i.e. at 5.057: the blend runs ~5.058 .. 5.102
+    src = cs_prog(
+        CS_HEAD,
+        "  p1 : REAL[2] := [30.0, 40.0];\n  p2 : REAL[2] := [60.0, 80.0];\n"
+        "  p3 : REAL[2] := [60.0, 40.0];\n",
+        "IF k = 0 THEN\n"
+        + "".join(
+            f"MCLM({cs}, {c}, 0, {p}, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, "
+            f"trapezoidal, 100.0, 100.0, %oftime, {tt}, disabled, programmed, 0.0, 0, none, 0, 0);\n"
+            for cs, c, p, tt in (
+                ("XY", "c1", "p1", 2),
+                ("XY", "c2", "p2", 1),
+                ("UV", "c3", "p1", 2),
+                ("UV", "c4", "p3", 1),
+            )
+        )  # fmt: skip
+        + "END_IF;",
+    )
+    tr = trace(st, src, 5200, "XY.MoveTransitionStatus", "UV.MoveTransitionStatus", "c2.AC",
+               "c4.AC", "c1.AC", "c3.AC")  # fmt: skip
+    assert [tr.at(5.08, n) for n in ("c1.AC", "c2.AC", "c3.AC", "c4.AC")] == [1, 1, 1, 1]
+    assert set(tr.col("XY.MoveTransitionStatus")) == {0.0}  # collinear: always on the path
+    assert tr.at(5.08, "UV.MoveTransitionStatus") == 1  # the corner is cut
+    assert (
+        tr.at(5.05, "UV.MoveTransitionStatus") == 0 and tr.at(5.15, "UV.MoveTransitionStatus") == 0
+    )
