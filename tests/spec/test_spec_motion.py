@@ -1020,3 +1020,29 @@ def test_move_transition_status_only_off_the_path(st) -> None:
     assert (
         tr.at(5.05, "UV.MoveTransitionStatus") == 0 and tr.at(5.15, "UV.MoveTransitionStatus") == 0
     )
+
+
+def test_time_cam_status_bits_in_the_motion_status_word(st) -> None:
+    """SPEC 5 / 9.22: MATC status bits per the seed's MotionStatus table: TimeCamStatus bit 9,
+    TimeCamPendingStatus 11, TimeCamLockStatus 14 (master driven, Immediate Forward Only:
+    locked as the cam starts), CoordinatedMotionStatus 16 (the slave of an MDAC). A pending
+    cam may use Immediate Forward Only (seed)."""
+    src = """VAR
+  p1 : CAM_PROFILE[2] := [(Master := 0.0, Slave := 0.0, SegmentType := 0), (Master := 1.0, Slave := 2.0, SegmentType := 0)];
+  M, S : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN
+  MDAC(S, M, c3, timecam, command);
+  MATC(S, c1, 0, p1, 1.0, 1.0, once, immediate, 0.0, immediateforwardonly, masterdrivenmode);
+  MATC(S, c2, 0, p1, 1.0, 1.0, once, pending, 0.0, immediateforwardonly, masterdrivenmode);
+END_IF;
+k := k + 1;
+"""
+    r = st.run(src, "S.MotionStatus", "S.TimeCamLockStatus", "c2.ER", "c2.DN", scans=5)
+    assert r.code == 0, r.err
+    # 2**9 + 2**11 + 2**14 + 2**16 = 512 + 2048 + 16384 + 65536 (the master stands still)
+    assert r.tags == {
+        "S.MotionStatus": 84480, "S.TimeCamLockStatus": True, "c2.ER": False, "c2.DN": True,
+    }  # fmt: skip
