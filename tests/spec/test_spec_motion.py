@@ -259,6 +259,9 @@ def test_mccm_exact_semicircle_radius_is_valid_for_both_signs(st) -> None:
         # centre (10, 0): R1 = |start - c| = 10, R2 = |(20, 10) - c| = 14.14;
         # |R1 - R2| = 4.14 > 0.15 * 10 = 1.5: 46
         ("  e : REAL[2] := [20.0, 10.0];\n  a : REAL[2] := [10.0, 0.0];\n", ("e", 1, "a", 0), 46),
+        # via point on the start point: every circle through start and end passes it, so
+        # no single circle is defined: 47 (Circular Infinite Solution, the Logix table)
+        ("  e : REAL[2] := [20.0, 0.0];\n  a : REAL[2];\n", ("e", 0, "a", 0), 47),
         # radius below 0.001: 49
         ("  e : REAL[2] := [10.0, 10.0];\n", ("e", 2, "0.0005", 0), 49),
         # chord |(10, 10)| = 14.14 > 2 |R| = 10: the radius cannot span the points: 49
@@ -267,8 +270,8 @@ def test_mccm_exact_semicircle_radius_is_valid_for_both_signs(st) -> None:
     ],
 )
 def test_mccm_geometry_errors(st, decls: str, call: tuple, err: int) -> None:  # type: ignore[type-arg]
-    """SPEC 5: geometry errors 45 end = start where not allowed, 46 start/end radius mismatch
-    (|R1-R2| > 0.15 R1), 49 radius too small (< 0.001 or cannot span the points); reported
+    """SPEC 5: geometry errors (44..49) 45 end = start where not allowed, 46 start/end radius
+    mismatch (|R1-R2| > 0.15 R1), 47 via point on the start, 49 radius too small (< 0.001 or cannot span the points); reported
     in the executing scan (ER, no DN), nothing moves."""
     pos, ctype, aux, direction = call
     body = "IF k = 0 THEN " + mccm("XY", "c1", pos, ctype, aux, direction) + " END_IF;"
