@@ -1049,3 +1049,20 @@ k := k + 1;
     assert r.tags == {
         "S.MotionStatus": 84480, "S.TimeCamLockStatus": True, "c2.ER": False, "c2.DN": True,
     }  # fmt: skip
+
+
+def test_time_cam_clock_starts_at_the_profiles_first_master_value(st) -> None:
+    """SPEC 5 / 9.22 with a profile that does not start at master 0 (decision 0142): the cam
+    time runs from the first to the last master value, P(0) is the first point's value."""
+    # (0.5, 3) (1.5, 13): slope 10, span 1 s. From the update 0.002: 10 (t - 0.002) without a
+    # jump to 3 at the start, PC when the last master value is reached: 1.002, then held 10
+    src = cs_prog(
+        MATC_HEAD,
+        "  p1 : CAM_PROFILE[2] := [(Master := 0.5, Slave := 3.0, SegmentType := 0), "
+        "(Master := 1.5, Slave := 13.0, SegmentType := 0)];\n",
+        "IF k = 0 THEN MATC(A, c1, 0, p1, 1.0, 1.0, once, immediate, 0.0, none, 0); END_IF;",
+    )
+    tr = trace(st, src, 1200, "A.CommandPosition", "c1.PC")
+    for t in (0.002, 0.202, 0.502, 1.002, 1.198):
+        assert tr.at(t, "A.CommandPosition") == pytest.approx(10.0 * min(t - T0, 1.0), abs=1e-4)
+    assert tr.first("c1.PC", 1) == pytest.approx(1.002)
