@@ -1066,3 +1066,36 @@ def test_time_cam_clock_starts_at_the_profiles_first_master_value(st) -> None:
     for t in (0.002, 0.202, 0.502, 1.002, 1.198):
         assert tr.at(t, "A.CommandPosition") == pytest.approx(10.0 * min(t - T0, 1.0), abs=1e-4)
     assert tr.first("c1.PC", 1) == pytest.approx(1.002)
+
+
+def test_master_driven_chain_has_no_update_lag(st) -> None:
+    """SPEC 9.3: within one update, masters are computed before their slaves (no extra lag);
+    here M drives S and S drives T (master-driven jogs at 1 unit per master unit)."""
+    # The slaves' jogs are waiting for master travel from the update 0.002; M jogs from the
+    # update 0.012 (accel 100). Each slave ramps to 1 unit per master unit within 1e-6 master
+    # units (accel 1e6 per mu^2), losing 0.5e-6 units: S = M - 0.5e-6, T = S - 0.5e-6 at every
+    # update, and the three velocities are equal in every row (a lag would show the slave one
+    # update behind: 100 * 0.002 = 0.2 units/s slower while M accelerates)
+    src = """VAR
+  M, S, T : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 1000.0, MaximumDecel := 1000.0);
+  c1, c2, c3, c4, j1 : MOTION_INSTRUCTION;
+  k : DINT;
+END_VAR
+IF k = 0 THEN
+  MDAC(T, S, c1, jog, command); MDAC(S, M, c2, jog, command);
+  MAJ(T, c3, forward, 1.0, unitspermasterunit, 1000000.0, unitspermasterunit2, 1000000.0, unitspermasterunit2, trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 0.0, none);
+  MAJ(S, c4, forward, 1.0, unitspermasterunit, 1000000.0, unitspermasterunit2, 1000000.0, unitspermasterunit2, trapezoidal, 0.0, 0.0, unitspermasterunit3, disabled, programmed, 0.0, none);
+END_IF;
+IF k = 10 THEN
+  MAJ(M, j1, forward, 10.0, unitspersec, 100.0, unitspersec2, 100.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none);
+END_IF;
+k := k + 1;
+"""
+    tr = trace(st, src, 200, "M.CommandPosition", "S.CommandPosition", "T.CommandPosition",
+               "M.CommandVelocity", "S.CommandVelocity", "T.CommandVelocity")  # fmt: skip
+    for t in (0.02, 0.05, 0.08, 0.11, 0.15, 0.199):
+        m, s, u = (tr.at(t, f"{n}.CommandPosition") for n in "MST")
+        assert m > 0.0
+        assert s == pytest.approx(m - 0.5e-6, abs=2e-6) and u == pytest.approx(s - 0.5e-6, abs=2e-6)
+        vm, vs, vt = (tr.at(t, f"{n}.CommandVelocity") for n in "MST")
+        assert vs == pytest.approx(vm, abs=1e-4) and vt == pytest.approx(vm, abs=1e-4), t
