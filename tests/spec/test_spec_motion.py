@@ -1099,3 +1099,34 @@ k := k + 1;
         assert s == pytest.approx(m - 0.5e-6, abs=2e-6) and u == pytest.approx(s - 0.5e-6, abs=2e-6)
         vm, vs, vt = (tr.at(t, f"{n}.CommandVelocity") for n in "MST")
         assert vs == pytest.approx(vm, abs=1e-4) and vt == pytest.approx(vm, abs=1e-4), t
+
+
+def test_maoc_position_latch_is_an_edge_not_a_level(st) -> None:
+    """SPEC 9.27: a Position latch is an edge (set on entering): a cam armed with its position
+    already inside [Left, Right] does not set the bit until the cam enters the window."""
+    # window [10, 20] on [0, 100] Continuous, CamArm 15 with the axis at 0 (Immediate):
+    # cam = 15 + x. At rest the cam sits inside the window: bit 0. Jogging forward at
+    # 100 units/s from the update 0.002 (accel 1e5: at speed within the update): the cam
+    # leaves at 20 (x = 5), wraps at 100 (x = 85), enters at 10 (x = 95, t ~ 0.952) and
+    # leaves at 20 (x = 105, t ~ 1.052): the bit is 1 at t = 1.0 and 0 again at 1.1
+    src = """VAR
+  A : AXIS_VIRTUAL := (MaximumSpeed := 1000.0, MaximumAccel := 100000.0, MaximumDecel := 100000.0);
+  arm, jog : MOTION_INSTRUCTION;
+  cam : OUTPUT_CAM[1] := [(OutputBit := 0, LatchType := 1, UnlatchType := 1, Left := 10.0, Right := 20.0)];
+  comp : OUTPUT_COMPENSATION[1];
+  outw, inw, k : DINT;
+  go : BOOL;
+END_VAR
+IF k = 0 THEN MAOC(A, 0, arm, outw, inw, cam, 0.0, 100.0, comp, continuous, immediate, 0.0, 15.0, actual); END_IF;
+IF go AND k = 0 THEN MAJ(A, jog, forward, 100.0, unitspersec, 100000.0, unitspersec2, 100000.0, unitspersec2, trapezoidal, 0.0, 0.0, unitspersec3, disabled, programmed, 0.0, none); END_IF;
+k := k + 1;
+"""
+    tr = trace(st, src, 50, "outw", "arm.IP", "arm.ER")
+    assert tr.at(0.0, "arm.ER") == 0 and set(tr.col("outw")) == {0.0}
+    assert tr.col("arm.IP")[-1] == 1
+    tr = trace(
+        st, src.replace("go : BOOL;", "go : BOOL := TRUE;"), 1150, "outw", "A.ActualPosition"
+    )
+    assert tr.at(0.9, "outw") == 0  # x ~ 89.8: the cam (4.8) is before the window
+    assert tr.at(1.0, "outw") == 1  # x ~ 99.8: cam 14.8, entered at 10
+    assert tr.at(1.1, "outw") == 0  # x ~ 109.8: cam 24.8, left at 20
