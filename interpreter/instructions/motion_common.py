@@ -5,7 +5,9 @@ Handshake (MOTION_INSTRUCTION seed tables; ladder passes `rung`, ST always True)
 - rung false: EN is cleared when DN or ER is set (the false-rung action);
 - rung true: EN set, DN ER PC IP AC ACCEL DECEL and ERR/EXERR cleared, then the
   instruction executes; success sets DN (and IP for processes), failure sets ER, ERR and
-  EXERR (error 13: EXERR is the zero-based faceplate index of the bad operand).
+  EXERR (error 13: EXERR is the zero-based faceplate index of the bad operand; errors 5, 7
+  and 54 of coordinated instructions: the axis's index in the system, 54 also -1 for the
+  system itself).
 Operand problems never raise: they become `.ERR` codes.
 """
 
@@ -56,10 +58,21 @@ def begin(ctl: list, rung: bool) -> bool:
     return True
 
 
+# errors whose EXERR the seeds define: 13 names the operand; 5, 7 and 54 of a coordinated
+# move name the axis by its index in the coordinate system (54: -1 the system itself);
+# single-axis instructions report those with EXERR 0; other errors leave EXERR 0
+_EXERR_ERRORS = (
+    MotionError.PARAMETER_OUT_OF_RANGE,
+    MotionError.SERVO_OFF_STATE,
+    MotionError.SHUTDOWN_STATE,
+    MotionError.ZERO_MAX_DECEL,
+)
+
+
 def fail(rt: MotionRuntime, ctl: list, error: int, exerr: int = 0) -> None:
     """The execution failed: ER with the Logix error number; the control leaves any process."""
     rt.own(ctl)
-    set_error(ctl, error, exerr if error == MotionError.PARAMETER_OUT_OF_RANGE else 0)
+    set_error(ctl, error, exerr if error in _EXERR_ERRORS else 0)
 
 
 def failed(rt: MotionRuntime, ctl: list, result: StartResult) -> bool:

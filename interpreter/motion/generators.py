@@ -45,6 +45,7 @@ class ProfileGen:
     goal: float = 0.0  # moves: end point in profile coordinates (a dwelling move keeps it)
     direction: float = 1.0  # jogs: sign of the jog speed
     t_offset: float = 0.0  # master distance at which the current profile started (MCD)
+    hold: bool = False  # a stop of all motion waiting for another set's motion to end
 
     def step(self, cup: float, master_pos: float, master_vel: float) -> float:
         """Advance the own clock one update; returns the position change."""
@@ -78,7 +79,7 @@ class ProfileGen:
 
     @property
     def finished(self) -> bool:
-        return self.t >= self.profile.duration
+        return not self.hold and self.t >= self.profile.duration
 
     def current_phase(self) -> EventKind:
         if self.v * self.a > 1e-12 or (abs(self.v) <= 1e-12 and abs(self.a) > 1e-12):
@@ -183,7 +184,9 @@ class ProfileSet:
         self._phase = np.array([_PHASE_CODE[g.phase] for g in gens], dtype=np.int64)
         kinds = list(_KIND_STATUS)
         self._kind = np.array([kinds.index(g.kind) for g in gens], dtype=np.intp)
-        self._ends = np.array([g.kind != GeneratorKind.JOG for g in gens], dtype=bool)
+        self._ends = np.array(
+            [g.kind != GeneratorKind.JOG and not g.hold for g in gens], dtype=bool
+        )
         self._duration = np.array([g.profile.duration for g in gens], dtype=f)
         width = max((len(g.profile.t0) for g in gens), default=1)
         # segment k of row r: start time in _t0[r, k] (padding never starts), and its

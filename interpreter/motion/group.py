@@ -453,6 +453,11 @@ class MotionGroup:
             or abs(float(self.command_velocity[axis])) > _VEL_EPS
         )
 
+    def moved_by_another_set(self, axis: int, own: object) -> bool:
+        """Does a process of a set other than `own` move the axis (a stop of all motion
+        waits for what it cannot end at once, e.g. a path stopping along its path)?"""
+        return any(ps.busy(axis) for ps in self._sets if ps is not own)
+
     def links_in_use(self) -> set[int]:
         """MDAC handles that drive a running master-driven process (MDAC .AC)."""
         used: set[int] = set()

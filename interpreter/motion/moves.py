@@ -389,7 +389,30 @@ def apply_stop(
     jerk = cfg.max_decel_jerk if decel_jerk is None else decel_jerk
     lim = Limits(0.0, dec, dec, jerk, jerk)
     gen = ProfileGen(h, GeneratorKind.STOP, axis, plan_stop(v0, lim), owner=owner)
+    if stop_type == StopType.ALL and group.moved_by_another_set(axis, group.moves):
+        # motion the stop could not end at once (a coordinate system decelerating along
+        # its path) still moves the axis: the stop completes when that has ended
+        gen.hold = True
+        _release_when_alone(group, gen)
     add_gen(group, gen, ev)
+
+
+def _release_when_alone(group: MotionGroup, gen: ProfileGen) -> None:
+    """After each update: a held stop that no other set's motion keeps busy ends its hold
+    (and completes once its own profile has run out)."""
+
+    def check(ev: list[tuple[int, EventKind, int]]) -> None:
+        if gen not in group.moves.view():
+            return  # ended otherwise (another stop, a shutdown)
+        if group.moved_by_another_set(gen.axis, group.moves):
+            group.after_update(check)
+            return
+        _ = group.moves.gens  # handing the objects out rebuilds the rows: the hold is lifted
+        gen.hold = False
+        if gen.finished:
+            end_gen(group, gen, EventKind.COMPLETE, ev)
+
+    group.after_update(check)
 
 
 # -- dynamics changes (MCD) ---------------------------------------------------------

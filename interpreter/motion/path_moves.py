@@ -81,6 +81,13 @@ def start_path(
     at speed V0 takes it from max(V, |V0 - V|) instead of V (SPEC 9.28)."""
     paths = group.paths
     cs = paths.systems[cs_id]
+    # every primary axis must be able to move, as for single-axis moves; EXERR names the
+    # first one that cannot by its index in the system (MCCM seed, decision 0140)
+    for k, ax in enumerate(cs.axes):
+        if group.shutdown[ax]:
+            return StartResult(error=MotionError.SHUTDOWN_STATE, exerr=k)
+        if not group.servo_on[ax]:
+            return StartResult(error=MotionError.SERVO_OFF_STATE, exerr=k)
     h = group.new_handle()
     mv = PathMove(h, cs_id, segment, limits, termination, tolerance)
     if merge == MergeMode.DISABLED:
@@ -138,11 +145,13 @@ def stop_path(
     def apply(ev: Events) -> None:
         paths._sync_out()
         paths.stop_system(cs_id, h, decel, jerk, ev)
-        if stop_all:
-            for ax in cs.axes:
-                group.stop(ax, StopType.ALL)
 
     group.after_update(apply)
+    if stop_all:
+        # requested now, so they apply at the same update as the path stop (SPEC 9.3), after
+        # it: the stopping system is then left alone by the axes' stops
+        for ax in cs.axes:
+            group.stop(ax, StopType.ALL)
     return StartResult(handle=h)
 
 

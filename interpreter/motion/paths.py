@@ -593,6 +593,8 @@ class PathSet:
         elif cs.stop and cs.rows:
             decel = any(r.v > _EPS for r in cs.rows)
         pending = bool(cs.queue) and (lead is not None or len(cs.queue) > 1)
+        # blending collinear lines keeps the axes on the path: no transition (MCCM seed)
+        off_path = blending and not _collinear(moving)
         return {
             "MotionStatus": bool(cs.rows or cs.queue),
             "AccelStatus": accel,
@@ -601,10 +603,21 @@ class PathSet:
             "CommandPosToleranceStatus": cs.cmd_tol,
             "StoppingStatus": cs.stop != 0,
             "MoveStatus": bool(moving) or bool(cs.queue and cs.stop == 0),
-            "MoveTransitionStatus": blending,
+            "MoveTransitionStatus": off_path,
             "MovePendingStatus": pending,
             "MovePendingQueueFullStatus": pending,
         }
+
+
+def _collinear(moves: list[PathMove]) -> bool:
+    """Straight lines all in one direction (their superposition stays on the line)."""
+    first = moves[0].segment
+    return all(
+        not m.segment.is_arc
+        and m.segment.length > _EPS
+        and float(np.dot(first.u, m.segment.u)) > 1.0 - 1e-9
+        for m in moves
+    )
 
 
 def _blend_point(mv: PathMove) -> float:
