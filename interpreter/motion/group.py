@@ -102,8 +102,9 @@ def _motion_status_bits() -> dict[str, int]:
 
 # per level of the plan: (the level is every axis, its views of command position, actual
 # position, command velocity, command acceleration, actual velocity and the actual position
-# before the update; None when the level's axes are not consecutive)
-_LevelViews = tuple[bool, tuple[np.ndarray, ...] | None]
+# before the update; None when the level's axes are not consecutive; the axis when the
+# level is that one axis, else -1)
+_LevelViews = tuple[bool, tuple[np.ndarray, ...] | None, int]
 
 # Bit numbers of the AXIS MotionStatus word (names are the AXIS attribute names).
 STATUS_BITS: dict[str, int] = _motion_status_bits()
@@ -655,9 +656,11 @@ class MotionGroup:
         for _sel, idx, _alpha in self._level_plan:
             if isinstance(idx, slice):
                 whole = idx == slice(None) or (idx.start == 0 and idx.stop == n)
-                views.append((whole, tuple(a[idx] for a in arrays)))  # type: ignore[arg-type]
+                one = not whole and idx.stop is not None and idx.stop - idx.start == 1
+                single = idx.start if one else -1
+                views.append((whole, tuple(a[idx] for a in arrays), single))  # type: ignore[arg-type]
             else:
-                views.append((False, None))
+                views.append((False, None, -1))
         self._level_run = list(zip(self._level_plan, views, strict=True))
 
     def update(self) -> list[MotionEvent]:
@@ -691,7 +694,7 @@ class MotionGroup:
             closed = self._closed = bool(self.servo_on.all())
         bincount = np.bincount
         steps = self._steps
-        for (sel, idx, alpha), (whole, views) in self._level_run:
+        for (sel, idx, alpha), (whole, views, single) in self._level_run:
             parts = []
             for step in steps:
                 c = step(cup, sel, positions, velocities, ev)
@@ -700,6 +703,22 @@ class MotionGroup:
             if views is not None and not rot and closed:
                 # consecutive axes, no wrap, every loop closed (the usual case): the same
                 # operations as below, written through the level's views
+                if single >= 0 and len(parts) == 1 and len(parts[0].axis) == 1:
+                    # one axis driven by one process (a master jogging ahead of its
+                    # slaves): the same operations on Python floats (IEEE doubles, the
+                    # same results); bincount's sum of one row is 0.0 + its value
+                    c = parts[0]
+                    cmd += bincount(c.axis, c.dpos, n)
+                    i = single
+                    cvel[i] = 0.0 + float(c.vel[0])
+                    cacc[i] = 0.0 + float(c.acc[0])
+                    a_i = float(act[i])
+                    d_i = float(cmd[i]) - a_i
+                    d_i *= float(alpha[0])
+                    a_i += d_i
+                    act[i] = a_i
+                    avel[i] = (a_i - float(prev_actual[i])) / cup
+                    continue
                 cmd_v, act_v, cvel_v, cacc_v, avel_v, prev_v = views
                 if len(parts) == 1:  # one kind of motion at this level (e.g. only cams)
                     c = parts[0]
