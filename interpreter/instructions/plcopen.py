@@ -28,6 +28,7 @@ from ..motion.poscam import (
 )
 from ..runtime.motion import Axis, MotionRuntime
 from ..runtime.motion_layout import CAM_MASTER, CAM_SEGMENT, CAM_SLAVE, struct_type
+from ..semantics.types import Elementary
 from ..vm.context import ExecContext
 from ..vm.refs import ArrayRef
 from .motion_common import runtime
@@ -42,6 +43,11 @@ _CIN_OUT = ("INSYNC", "BUSY", "COMMANDABORTED", "ERROR", "ERRORID", "ENDOFPROFIL
 _OUT = slice(_CIN["INSYNC"], _CIN["ENDOFPROFILE"] + 1)
 assert [_CIN[m] for m in _CIN_OUT] == list(range(_OUT.start, _OUT.stop)), "MC_CamIn output order"
 _IDLE = (0, 0, 0, 0, 0, 0)
+# the compiler passes one (member index, value) pair per axis or array input given
+# (st_compiler.fb_call); the block functions take as many pairs as parameters
+_SEL_PAIRS = sum(not isinstance(t, Elementary) for _, t in struct_type("MC_CAMTABLESELECT").members)
+_CIN_PAIRS = sum(not isinstance(t, Elementary) for _, t in struct_type("MC_CAMIN").members)
+assert (_SEL_PAIRS, _CIN_PAIRS) == (3, 2), "MC_CamTableSelect/MC_CamIn reference inputs"
 
 
 @dataclass(frozen=True, slots=True)
@@ -100,7 +106,15 @@ def _blocks(rt: MotionRuntime) -> _Blocks:
 
 
 def _refs(pairs: tuple[object, ...]) -> dict[int, object]:
-    return {int(pairs[i]): pairs[i + 1] for i in range(0, len(pairs), 2)}  # type: ignore[call-overload]
+    """The (member index, value) pairs of a call as a dict; a pair not passed is (None,
+    None). The blocks take the pairs as parameters with defaults rather than *pairs: a
+    call of a function with *args costs about twice a plain call, and the scan calls
+    every block every time."""
+    return {
+        int(pairs[i]): pairs[i + 1]  # type: ignore[call-overload]
+        for i in range(0, len(pairs), 2)
+        if pairs[i] is not None
+    }
 
 
 def _axes(
@@ -132,7 +146,18 @@ def _table_profile(table: object) -> CamProfile | CamInError:
 
 
 @implements("MC_CamTableSelect")
-def mc_cam_table_select(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
+def mc_cam_table_select(
+    ctx: ExecContext,
+    rung: bool,
+    inst: list,
+    k0: object = None,
+    v0: object = None,
+    k1: object = None,
+    v1: object = None,
+    k2: object = None,
+    v2: object = None,
+) -> None:
+    """Master, Slave and CamTable come as up to three (member index, value) pairs."""
     b = _last[1] if _last[0] is ctx.motion else _blocks(runtime(ctx))  # see _blocks
     key = id(inst)
     if inst[_SEL_EXECUTE] and b.selects.get(key, False):
@@ -146,7 +171,7 @@ def mc_cam_table_select(ctx: ExecContext, rung: bool, inst: list, *pairs: object
             inst[ix[name]] = 0
         inst[ix["ERRORID"]] = 0
         return
-    refs = _refs(pairs)
+    refs = _refs((k0, v0, k1, v1, k2, v2))
     axes = _axes(rt, refs, ix)
     profile = _table_profile(refs.get(ix["CAMTABLE"])) if not isinstance(axes, CamInError) else axes
     if isinstance(axes, CamInError) or isinstance(profile, CamInError):
@@ -210,7 +235,16 @@ def _start(rt: MotionRuntime, b: _Blocks, st: _CamInState, inst: list, refs: dic
 
 
 @implements("MC_CamIn")
-def mc_cam_in(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
+def mc_cam_in(
+    ctx: ExecContext,
+    rung: bool,
+    inst: list,
+    k0: object = None,
+    v0: object = None,
+    k1: object = None,
+    v1: object = None,
+) -> None:
+    """Master and Slave come as up to two (member index, value) pairs."""
     b = _last[1] if _last[0] is ctx.motion else _blocks(runtime(ctx))  # see _blocks
     st = b.camins.get(id(inst))
     if st is not None and st.steady and inst[_CIN_EXECUTE] and inst[_CIN_TABLE] == st.table:
@@ -229,7 +263,7 @@ def mc_cam_in(ctx: ExecContext, rung: bool, inst: list, *pairs: object) -> None:
     rising = execute and not st.execute
     st.execute = execute
     if rising:
-        _start(rt, b, st, inst, _refs(pairs))
+        _start(rt, b, st, inst, _refs((k0, v0, k1, v1)))
     c = st.coupling
     if c is not None and not rising and inst[_CIN_TABLE] != st.table and c.busy:
         tid = int(inst[_CIN_TABLE])

@@ -190,7 +190,8 @@ class ProfileBank:
     """Several profiles laid end to end on one axis so one searchsorted serves all cams."""
 
     __slots__ = (
-        "profiles", "base", "knots", "knot_rows", "coef", "first_seg", "last_seg", "key",
+        "profiles", "base", "knots", "knot_rows", "coef", "table", "first_seg", "last_seg",
+        "key",
     )  # fmt: skip
 
     def __init__(self, profiles: list[CamProfile]) -> None:
@@ -220,30 +221,53 @@ class ProfileBank:
         coef = np.concatenate(coefs)
         # a fifth column 2 c2 (exact: a doubling) saves evaluate_rows two multiplications
         self.coef = np.hstack((coef, 2.0 * coef[:, 2:3]))
+        # the knots and coefficients as rows, so evaluate_rows gathers a row's segment data
+        # with one take and every column it reads is contiguous (an empty bank has one knot
+        # and no segment: its table is the unused row 0)
+        knot_rows = self.knot_rows[: len(self.coef)]
+        self.table = np.ascontiguousarray(np.column_stack((knot_rows, self.coef)).T)
         self.first_seg = np.array(first, dtype=np.intp) + 1  # rows of knot_rows and coef
         self.last_seg = np.array(last, dtype=np.intp) + 1
 
-    def evaluate(
-        self, prof: np.ndarray, local: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Evaluate profile prof[k] at local master offset local[k] (0..span) for every k."""
+    def evaluate(self, prof: np.ndarray, local: np.ndarray) -> np.ndarray:
+        """Evaluate profile prof[k] at local master offset local[k] (0..span) for every k:
+        (position, velocity, acceleration) rows, see evaluate_rows."""
         return self.evaluate_rows(self.base[prof], self.first_seg[prof], self.last_seg[prof], local)
 
     def evaluate_rows(
         self, base: np.ndarray, first: np.ndarray, last: np.ndarray, local: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """evaluate() with the per-row profile data gathered beforehand (base[prof], ...)."""
+    ) -> np.ndarray:
+        """evaluate() with the per-row profile data gathered beforehand (base[prof], ...).
+
+        Returns one (3, rows) array: position, velocity and acceleration (unpack it as a
+        tuple). The arithmetic is the same as the plain expressions in the comments,
+        operation for operation (IEEE sums and products commute exactly), written in place
+        into that array: on a few dozen rows a numpy call costs far more than its work."""
         g = local + base
         # local >= 0 keeps g at or after the profile's first knot (base itself), so only the
         # end needs a clamp: local = span may round onto the separator segment
-        i = np.minimum(np.searchsorted(self.knots, g, side="right"), last)
-        u = g - self.knot_rows[i]
-        c = self.coef[i]
-        c0, c1, c2, c3, c2x2 = c[:, 0], c[:, 1], c[:, 2], c[:, 3], c[:, 4]
-        pos = c0 + u * (c1 + u * (c2 + u * c3))
+        i = np.searchsorted(self.knots, g, side="right")
+        np.minimum(i, last, out=i)
+        c = self.table.take(i, axis=1)  # one gather: knot, c0, c1, c2, c3, 2 c2 per row
+        c3, c2x2 = c[4], c[5]
+        u = g
+        u -= c[0]  # u = g - knot
+        out = np.empty((3, len(u)))
+        pos, vel, acc = out[0], out[1], out[2]
+        # pos = c0 + u * (c1 + u * (c2 + u * c3))
+        np.multiply(u, c3, out=pos)
+        pos += c[3]
+        pos *= u
+        pos += c[2]
+        pos *= u
+        pos += c[1]
         # vel = c1 + u (2 c2 + 3 u c3), acc = 2 c2 + 6 u c3, with 6 u c3 = 2 (3 u c3):
         # doublings are exact, so these are the same numbers with fewer operations
-        m = 3.0 * u * c3
-        vel = c1 + u * (c2x2 + m)
-        acc = c2x2 + (m + m)
-        return pos, vel, acc
+        m = 3.0 * u
+        m *= c3  # m = 3.0 * u * c3
+        np.add(c2x2, m, out=vel)
+        vel *= u
+        vel += c[2]  # vel = c1 + u * (c2x2 + m)
+        m += m
+        np.add(c2x2, m, out=acc)  # acc = c2x2 + (m + m)
+        return out

@@ -55,7 +55,8 @@ class WatchSet(MotionlessSet):
 
     # -- as a process set of the group (decision 0104): no motion, it watches the result
     def end_update(self, actual: np.ndarray, events: Events) -> None:
-        self.check(actual, events)
+        if self.armed:  # most updates have no watch armed
+            self.check(actual, events)
 
     def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
         return 0.0, False  # a watch stays armed through stops (only MDW or a new MAW ends it)

@@ -101,6 +101,12 @@ def _motion_status_bits() -> dict[str, int]:
     return bits
 
 
+# per level of the plan: (the level is every axis, its views of command position, actual
+# position, command velocity, command acceleration, actual velocity and the actual position
+# before the update; None when the level's axes are not consecutive; the axis when the
+# level is that one axis, else -1)
+_LevelViews = tuple[bool, tuple[np.ndarray, ...] | None, int]
+
 # Bit numbers of the AXIS MotionStatus word (names are the AXIS attribute names).
 STATUS_BITS: dict[str, int] = _motion_status_bits()
 _STATUS_SHIFTS = np.array(list(STATUS_BITS.values()), dtype=np.uint32)
@@ -116,6 +122,11 @@ def _empty_code(code: CodeType) -> bool:
 def _motionless(ps: ProcessSet) -> bool:
     """Does the set keep MotionlessSet's step (it contributes nothing, ever)?"""
     return getattr(type(ps), "step", None) is MotionlessSet.step
+
+
+def _statusless(ps: ProcessSet) -> bool:
+    """Does the set keep MotionlessSet's status (no AXIS status member, ever)?"""
+    return getattr(type(ps), "status", None) is MotionlessSet.status
 
 
 def _empty(method: Callable[..., object]) -> bool:
@@ -213,9 +224,17 @@ class MotionGroup:
         self._steps = [ps.step for ps in self._sets if not _motionless(ps)]
         self._begin_hooks = [ps.begin_update for ps in self._sets if not _empty(ps.begin_update)]
         self._end_hooks = [ps.end_update for ps in self._sets if not _empty(ps.end_update)]
-        self._status_calls = [ps.status for ps in self._sets]
+        # a set that keeps MotionlessSet.status owns no status member (it always hands out
+        # the same empty dict, which adds nothing to the merge): not asked
+        self._status_calls = [ps.status for ps in self._sets if not _statusless(ps)]
         # per level: (the sets' level selection, the level's axes, their servo alpha)
         self._level_plan: list[tuple[LevelSel, np.ndarray | slice, np.ndarray]] = []
+        # the plan with each level's views (_plan_views)
+        self._level_run: list[
+            tuple[tuple[LevelSel, np.ndarray | slice, np.ndarray], _LevelViews]
+        ] = []
+        self._views_of: tuple[np.ndarray, ...] = (np.zeros(0),) * 6
+        self._prev_actual = np.zeros(0)  # the actual positions before this update
         self.shift = np.zeros(0)  # per-axis position redefinition applied by the last update
         self.shifted = False  # some shift is not 0 (spares resetting and testing the array)
         # the sets' status dicts of the latest update and their merge (kept while unchanged)
@@ -621,6 +640,35 @@ class MotionGroup:
                 plan.append(((level, lv), idx, self._alpha[idx]))
             self._level_plan = plan
         self._levels_dirty = False
+        self._plan_views()
+
+    def _plan_views(self) -> None:
+        """Per level of the plan, the views the update writes through: the level's axes of
+        the state arrays (None for a level whose axes are not consecutive: fancy indexing)
+        and whether the level is every axis. Built again when the levels or the state
+        arrays change (add_axis replaces them), so the update makes no view per level."""
+        n = len(self.axes)
+        if len(self._prev_actual) != n:
+            self._prev_actual = np.zeros(n)
+        arrays = (
+            self.command_position,
+            self.actual_position,
+            self.command_velocity,
+            self.command_acceleration,
+            self.actual_velocity,
+            self._prev_actual,
+        )
+        self._views_of = arrays
+        views: list[_LevelViews] = []
+        for _sel, idx, _alpha in self._level_plan:
+            if isinstance(idx, slice):
+                whole = idx == slice(None) or (idx.start == 0 and idx.stop == n)
+                one = not whole and idx.stop is not None and idx.stop - idx.start == 1
+                single = idx.start if one else -1
+                views.append((whole, tuple(a[idx] for a in arrays), single))  # type: ignore[arg-type]
+            else:
+                views.append((False, None, -1))
+        self._level_run = list(zip(self._level_plan, views, strict=True))
 
     def update(self) -> list[MotionEvent]:
         """Advance every axis one coarse update; returns the events of this update."""
@@ -641,7 +689,10 @@ class MotionGroup:
             begin()
         cmd, act = self.command_position, self.actual_position
         cvel, cacc, avel = self.command_velocity, self.command_acceleration, self.actual_velocity
-        prev_actual = act.copy()
+        if self._views_of[0] is not cmd or self._views_of[4] is not avel:
+            self._plan_views()  # the state arrays were replaced since the plan was made
+        prev_actual = self._prev_actual
+        np.copyto(prev_actual, act)
         positions = (act, cmd)
         velocities = (avel, cvel)
         rot = len(self._rotary) > 0
@@ -649,12 +700,56 @@ class MotionGroup:
         if closed is None:  # servo_on changes only in the servo and shutdown calls
             closed = self._closed = bool(self.servo_on.all())
         bincount = np.bincount
-        for sel, idx, alpha in self._level_plan:
+        steps = self._steps
+        for (sel, idx, alpha), (whole, views, single) in self._level_run:
             parts = []
-            for step in self._steps:
+            for step in steps:
                 c = step(cup, sel, positions, velocities, ev)
                 if len(c.axis):
                     parts.append(c)
+            if views is not None and not rot and closed:
+                # consecutive axes, no wrap, every loop closed (the usual case): the same
+                # operations as below, written through the level's views
+                if single >= 0 and len(parts) == 1 and len(parts[0].axis) == 1:
+                    # one axis driven by one process (a master jogging ahead of its
+                    # slaves): the same operations on Python floats (IEEE doubles, the
+                    # same results); bincount's sum of one row is 0.0 + its value
+                    c = parts[0]
+                    cmd += bincount(c.axis, c.dpos, n)
+                    i = single
+                    cvel[i] = 0.0 + float(c.vel[0])
+                    cacc[i] = 0.0 + float(c.acc[0])
+                    a_i = float(act[i])
+                    d_i = float(cmd[i]) - a_i
+                    d_i *= float(alpha[0])
+                    a_i += d_i
+                    act[i] = a_i
+                    avel[i] = (a_i - float(prev_actual[i])) / cup
+                    continue
+                cmd_v, act_v, cvel_v, cacc_v, avel_v, prev_v = views
+                if len(parts) == 1:  # one kind of motion at this level (e.g. only cams)
+                    c = parts[0]
+                    cmd += bincount(c.axis, c.dpos, n)
+                    if whole:
+                        cvel_v[...] = bincount(c.axis, c.vel, n)
+                        cacc_v[...] = bincount(c.axis, c.acc, n)
+                    else:
+                        cvel_v[...] = bincount(c.axis, c.vel, n)[idx]
+                        cacc_v[...] = bincount(c.axis, c.acc, n)[idx]
+                elif parts:
+                    axes = np.concatenate([c.axis for c in parts])
+                    cmd += bincount(axes, np.concatenate([c.dpos for c in parts]), n)
+                    cvel_v[...] = bincount(axes, np.concatenate([c.vel for c in parts]), n)[idx]
+                    cacc_v[...] = bincount(axes, np.concatenate([c.acc for c in parts]), n)[idx]
+                else:
+                    cvel_v[...] = 0.0
+                    cacc_v[...] = 0.0
+                d = cmd_v - act_v  # servo.servo_step: act + alpha * (cmd - act), in place
+                d *= alpha
+                act_v += d
+                np.subtract(act_v, prev_v, out=avel_v)
+                avel_v /= cup
+                continue
             if len(parts) == 1:  # one kind of motion at this level (e.g. only cams)
                 c = parts[0]
                 cmd += bincount(c.axis, c.dpos, n)

@@ -164,6 +164,7 @@ class PathSet:
         self._settling = 0  # rows waiting for the actual position (termination 0)
         self._k = -1  # row of the chunk handed out by the latest step
         self._K = 0  # rows in the chunk (0: none)
+        self._chunk_len = self.CHUNK  # updates the next chunk evaluates at most
         # lands the axes of a system that came to rest exactly on its end point (the
         # per-update increments add up to it only to rounding); set by the group
         self.snap: Callable[[tuple[int, ...], np.ndarray], None] | None = None
@@ -172,8 +173,13 @@ class PathSet:
     # Paths are time driven and deterministic between events (a start, a blend, an end, a
     # stop), so the rows are evaluated for the next CHUNK updates at once, vectorised over
     # rows and time; an update then hands out one precomputed row. Anything that changes
-    # the rows (changed()) drops the rest of the chunk.
+    # the rows (changed()) drops the rest of the chunk. The values do not depend on the
+    # chunk length (row n is evaluated at n * cup whatever chunk holds it), only the cost
+    # does: a chunk used up to its end is followed by one twice as long, up to CHUNK_MAX
+    # (one system's path: few numpy passes per move), and a rebuild starts again at CHUNK
+    # (many systems: a start in any of them drops the rest, so long chunks are wasted).
     CHUNK = 64
+    CHUNK_MAX = 512
 
     def _sync_out(self) -> None:
         """The state of the latest step back into the row objects."""
@@ -240,6 +246,7 @@ class PathSet:
         self._ri = np.array(ri, dtype=np.intp)
         self._col = np.array(col, dtype=np.intp)
         self._k, self._K = -1, 0  # no chunk yet
+        self._chunk_len = self.CHUNK
         self._dirty = False
         self._fresh = True
 
@@ -249,7 +256,7 @@ class PathSet:
         m = len(self._rows)
         rem = self._duration - self._n0 * cup  # time to each profile's end (inf: never)
         rem = rem[(rem > _CLOCK_EPS) & np.isfinite(rem)]
-        kk = self.CHUNK
+        kk = self._chunk_len
         if len(rem):
             kk = max(1, min(kk, math.ceil(float(rem.min()) / cup - 1e-6) + 1))
         self._K = kk
@@ -324,6 +331,8 @@ class PathSet:
             if self._K:
                 self._n0 = self._n0 + self._K
                 self._s_base_shift()
+                if self._K >= self._chunk_len:  # used up whole: the next one is longer
+                    self._chunk_len = min(2 * self._chunk_len, self.CHUNK_MAX)
             self._chunk(cup)
             k = 0
         self._k = k

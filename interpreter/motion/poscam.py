@@ -380,8 +380,9 @@ class PositionCamSet:
         self._mapc = np.array([c.mapc for c in rows], dtype=bool)
         self._mapc_rows = bool(self._mapc.any())
         self._lockok = np.ones(len(rows), dtype=bool)
-        self._v = np.array([c.v for c in rows], dtype=f)
-        self._a = np.array([c.a for c in rows], dtype=f)
+        # velocity and acceleration as the rows of one array: _step_plain stores both at once
+        self._va = np.array([[c.v for c in rows], [c.a for c in rows]], dtype=f).reshape(2, -1)
+        self._v, self._a = self._va[0], self._va[1]
         bank = self._bank
         self._row_base = bank.base[prof]
         self._row_first = bank.first_seg[prof]
@@ -465,9 +466,10 @@ class PositionCamSet:
             outside = ~periodic & ((local < 0.0) | (local > span))
         local = np.minimum(np.maximum(local, 0.0), span)
         assert self._bank is not None
-        p, dp, ddp = self._bank.evaluate_rows(
+        r = self._bank.evaluate_rows(
             self._row_base[sel], self._row_first[sel], self._row_last[sel], local
         )
+        p, dp, ddp = r[0], r[1], r[2]
         ss = self._ss[sel]
         y = ss * p + self._base[sel]
         if self._any_padd:
@@ -524,28 +526,29 @@ class PositionCamSet:
         np.maximum(local, 0.0, out=local)
         np.minimum(local, span, out=local)
         assert self._bank is not None
-        p, dp, ddp = self._bank.evaluate_rows(
-            self._row_base, self._row_first, self._row_last, local
-        )
-        ss = self._ss
-        y = ss * p + self._base
+        # (3, rows): p, dp, ddp, fresh from the evaluation; scaled in place below
+        sc = self._bank.evaluate_rows(self._row_base, self._row_first, self._row_last, local)
+        sc *= self._ss  # ss * p, ss * dp, ss * ddp in one operation
+        y = sc[0]
+        y += self._base  # y = ss * p + base
         if self._any_padd:
             y += (k - self._k0) * self._padd
         mv = ms * vm
-        vel = ss * dp * mv
-        acc = ss * ddp * mv * mv
+        va = sc[1:]
+        va *= mv  # vel = ss * dp * mv, and ss * ddp * mv
+        acc = sc[2]
+        acc *= mv  # acc = ss * ddp * mv * mv
         last = self._last
         dpos = y - last
         last[:] = y
-        self._v[:] = vel
-        self._a[:] = acc
+        self._va[...] = va  # self._v, self._a
         prev_k = self._k
         passed = k != prev_k
         if passed.any():  # a profile end passed: no cam here leaves its range (all periodic)
             prev_k = prev_k.copy()
             self._k[:] = k
             self._events(slice(None), self._no_row, passed, prev_k, k, x, m, events)
-        return Contribution(self._slave, dpos, vel, acc)
+        return Contribution(self._slave, dpos, sc[1], acc)
 
     def _select(self, level_sel: LevelSel) -> slice | np.ndarray | None:
         """The rows to step at this level (None: none); the answer per level is kept while

@@ -253,9 +253,10 @@ class TimeCamSet:
             x = x - k_pass * span
         local = np.minimum(np.maximum(x, 0.0), span)
         assert self._bank is not None
-        p, v, a = self._bank.evaluate_rows(
+        r = self._bank.evaluate_rows(
             self._row_base[sel], self._row_first[sel], self._row_last[sel], local
         )
+        p, v, a = r[0], r[1], r[2]
         gain = self._gain[sel]
         passes = self._passes[sel]
         contrib = gain * (p - self._p0[sel] + passes * self._net[sel])
@@ -290,7 +291,8 @@ class TimeCamSet:
         (the common update of a running cam; about half the time of the full step)."""
         assert self._bank is not None
         # x itself is the local cam time: the clamp to [0, span] of step() changes nothing
-        p, v, a = self._bank.evaluate_rows(self._row_base, self._row_first, self._row_last, x)
+        r = self._bank.evaluate_rows(self._row_base, self._row_first, self._row_last, x)
+        p, v, a = r[0], r[1], r[2]
         gain = self._gain
         contrib = gain * (p - self._p0 + self._pass_net)
         vel = gain * v / self._ts

@@ -122,8 +122,13 @@ class Controller:
             else:  # FBD/SFC/protected (U301/U302): a JSR to it runs nothing (SPEC 9.32)
                 compiled[r.name.upper()] = _not_simulated
                 continue
-            compiled[r.name.upper()] = self._translate(code, code.ops, f"_routine{tag}_{i}", ns)
-            self.prescans.append(self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns))
+            # program routines always run on self.T (JSR and the schedule pass it)
+            compiled[r.name.upper()] = self._translate(
+                code, code.ops, f"_routine{tag}_{i}", ns, self.T
+            )
+            self.prescans.append(
+                self._translate(code, code.prescan, f"_prescan{tag}_{i}", ns, self.T)
+            )
         ns["_R"].update(compiled)
         return compiled
 
@@ -155,10 +160,15 @@ class Controller:
                     routines.enable_in_false = fn
 
     def _translate(
-        self, code: Any, ops: list, name: str, ns: dict[str, Any] | None = None
+        self,
+        code: Any,
+        ops: list,
+        name: str,
+        ns: dict[str, Any] | None = None,
+        tags: list | None = None,
     ) -> Callable[..., None]:
         ns = self.ns if ns is None else ns
-        src = Translator(code, ns, name, ops).translate()
+        src = Translator(code, ns, name, ops, tags).translate()
         try:
             compiled = compile(src, f"<logix {code.path}:{name}>", "exec")
         except (SyntaxError, RecursionError):  # Python's limits: 100 nested blocks, parser depth

@@ -238,7 +238,17 @@ def _wrap_expr(x: str, t: Elementary) -> str:
 class Translator:
     """Bytecode -> Python source for one routine (main code or prescan code)."""
 
-    def __init__(self, code: Code, ns: dict[str, Any], func_name: str, ops: list[Ins]) -> None:
+    def __init__(
+        self,
+        code: Code,
+        ns: dict[str, Any],
+        func_name: str,
+        ops: list[Ins],
+        tags: list | None = None,
+    ) -> None:
+        # tags: the tag storage the routine is always called with (a program routine: the
+        # controller's tags; None for an AOI routine, which gets its instance frame as T)
+        self.tags = tags
         self.code = code
         self.ns = ns
         self.func_name = func_name
@@ -431,6 +441,17 @@ class Translator:
                         None,
                     )
                 )
+            elif (
+                self.tags is not None
+                and p.container == "T"
+                and p.key.isdecimal()
+                and isinstance(self.tags[int(p.key)], list)
+            ):
+                # a whole array tag: its element list is the same object for the life of
+                # the controller (stores into an array copy element by element), so the
+                # reference is made once, not at every execution (it is only read)
+                ref = ArrayRef(self.tags[int(p.key)], 0, elem, dims)
+                st.append(_Val(self.const_name(ref), None))
             else:
                 st.append(
                     _Val(
