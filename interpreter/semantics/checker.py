@@ -691,7 +691,14 @@ class Checker(LadderChecks):
                     self.loose(a.value)
                 return
             ins = self.cat.instruction(tag.type.name, "st")
-            if ins is not None:
+            # `PID(PID, pv, ...)`: a tag named like the instruction it is the type of, called
+            # with positional operands, is that instruction's Logix call (a v35 AOI's PID)
+            positional = bool(c.args) and c.args[0].name is None
+            own_name = ins is not None and c.name.upper() in (
+                ins.name.upper(),
+                *(a.upper() for a in ins.aliases),
+            )
+            if ins is not None and not (positional and own_name):
                 self.fb_call(c, tag, ins)
                 return
         named = next((a for a in c.args if a.name is not None), None)

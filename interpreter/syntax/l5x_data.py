@@ -39,6 +39,7 @@ ELEMENTARY = {
 }
 # Types whose values do not fit a DINT literal
 _WIDE = frozenset(("LINT", "ULINT", "UDINT", "TIME", "LTIME", "DT", "LDT"))
+_UNSIGNED = frozenset(("USINT", "UINT", "UDINT", "ULINT"))
 
 
 @dataclass(slots=True)
@@ -138,11 +139,15 @@ def parse_value(text: str, radix: str, dtype: str) -> int | float | None:
         return int.from_bytes(raw, "big", signed=False) if raw else 0
     neg = t.startswith("-")
     try:
-        value, _ = parse_number(t[1:] if neg else t)
+        value, kind = parse_number(t[1:] if neg else t)
     except ValueError:
         return None
     if isinstance(value, float):
         return None
+    if value < 0 and "#" in t and dtype in _UNSIGNED:
+        # parse_number reads a radix pattern as signed at its own width (16#ffff_0000 is
+        # -65536); an unsigned tag holds the pattern's unsigned value (a v35 UDINT mask)
+        value %= 1 << (64 if kind in ("LINT", "ULINT") else 32)
     return -value if neg else value
 
 
