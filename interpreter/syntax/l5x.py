@@ -410,6 +410,10 @@ class _Reader:
             if e.get("TagType") == "Alias":
                 aliases.append(AliasDecl(name, e.get("AliasFor"), sp))
                 continue
+            if e.get("Use") == "Reference" and not e.get("DataType"):
+                # the context of a program export names another program's tag it uses
+                # (`\Other.Tag`) without describing it: the tag lives outside the export
+                continue
             decl = self.var(e, name, "tag")
             if decl is not None:
                 decls.append(decl)

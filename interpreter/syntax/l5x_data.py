@@ -238,13 +238,19 @@ class DataReader:
                 if data is not None:
                     return self.string_literal(data)
             members: list[tuple[str, n.Span, n.Init]] = []
+            known = self._builtin_members(e.get("DataType"))
             for c in e.children:
                 name = c.get("Name")
                 if not name:
                     continue
                 init = self.decorated(c)
-                if init is not None:
-                    members.append((name, self.span(c), init))
+                if init is None:
+                    continue
+                if known is not None and name.upper() not in known and _is_zero(init):
+                    # a member Studio writes for a built-in type that logixst does not model
+                    # (MOTION_INSTRUCTION's TrackingMaster, v33), at its default: nothing lost
+                    continue
+                members.append((name, self.span(c), init))
             return n.StructInit(members, self.span(e))
         if tag in ("Array", "ArrayMember"):
             return self.array(e)
@@ -255,6 +261,15 @@ class DataReader:
             value = parse_value(text, e.get("Radix"), e.get("DataType").upper())
             return None if value is None else self.literal(e, value, "", text)
         return None
+
+    def _builtin_members(self, dtype: str) -> frozenset[str] | None:
+        """Upper-case member names of a catalog (built-in) structure type, else None."""
+        if not dtype or dtype.upper() in self.udts:
+            return None
+        from stdlib import catalog  # the syntax layer reads the catalog as l5x.py does
+
+        td = catalog().type(dtype)
+        return None if td is None else frozenset(m.name.upper() for m in td.members)
 
     def array(self, e: XElem) -> n.ArrayInit:
         dims = _dims(e.get("Dimensions"))
@@ -418,6 +433,10 @@ _PACKED: dict[str, tuple[tuple[tuple[str, int], ...], tuple[str, str]]] = {
         ("LEN", "POS"),
     ),
 }
+
+
+def _is_zero(init: n.Init) -> bool:
+    return isinstance(init, n.Literal) and init.value == 0
 
 
 def _is_string_structure(e: XElem) -> bool:

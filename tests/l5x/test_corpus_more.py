@@ -14,6 +14,8 @@ import pytest
 
 from interpreter.cli import main
 from interpreter.runtime.loader import load
+from interpreter.syntax import nodes as n
+from interpreter.syntax.l5x import read_l5x
 from interpreter.syntax.st_parser import parse_st
 
 HEAD = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
@@ -231,3 +233,118 @@ def test_a_user_type_named_like_a_built_in_is_still_refused(tmp_path: Path) -> N
     path = tmp_path / "sdk.L5X"
     path.write_text(SDK_EXPORT.format(timer_class="User"))
     assert "E117 type 'TIMER' is already defined" in diagnostics(path)
+
+
+# ------------------------------------------------------------ #region, TRUE/FALSE tags
+def test_region_lines_and_tags_named_true_and_false(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # W-P-I/FunctionBlocks (v33): `#region Macros / keywords`, then `TRUE:=1; FALSE:=0;` on
+    # local BOOL tags TRUE and FALSE, and `#endregion`, indented or not
+    tags = (
+        '<Tag Name="TRUE" TagType="Base" DataType="BOOL"/>\n'
+        '<Tag Name="FALSE" TagType="Base" DataType="BOOL"/>\n'
+    )
+    path = export(
+        tmp_path,
+        "#region Macros / keywords",
+        "\tTRUE:=1;",
+        "\tFALSE:=0;",
+        "\t#region nested",
+        "\tlow := 3;",
+        "\t#endregion",
+        "#endregion",
+        "IF TRUE AND NOT FALSE THEN Var := 2.5; END_IF;",
+        tags=tags,
+    )
+    assert diagnostics(path) == []
+    # TRUE and FALSE hold 1 and 0, the condition holds: Var = 2.5, low = 3
+    assert run(path, capsys, "TRUE", "FALSE", "Var", "low") == {
+        "TRUE": 1,
+        "FALSE": 0,
+        "Var": 2.5,
+        "low": 3,
+    }
+
+
+def test_a_hash_that_opens_no_region_is_still_refused(tmp_path: Path) -> None:
+    path = export(tmp_path, "#regional := 1;")
+    assert [d.split()[0] for d in diagnostics(path)][:1] == ["S004"]
+
+
+# ------------------------------------------------------------ GSV AddOnInstructionDefinition
+def test_gsv_of_the_add_on_instruction_definition(tmp_path: Path) -> None:
+    # W-P-I ISA88 AOIs (v33): GSV(AddOnInstructionDefinition,THIS,Vendor,Name) in their logic;
+    # here the class with an instance name, as a program may use it
+    tags = '<Tag Name="edited" TagType="Base" DataType="LINT"/>\n'
+    path = export(
+        tmp_path, "GSV(AddOnInstructionDefinition, Valve, LastEditDate, edited);", tags=tags
+    )
+    assert [d.split()[0] for d in diagnostics(path)] == ["U303"]
+
+
+# ------------------------------------------------------------ a program export's references
+PROGRAM_EXPORT = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
+<RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="33.00" TargetName="Caller" TargetType="Program" ContainsContext="true" ExportOptions="References NoRawData L5KData DecoratedData Context Dependencies ForceProtectedEncoding AllProjDocTrans">
+<Controller Use="Context" Name="Plant">
+<Programs Use="Context">
+<Program Use="Target" Name="Caller" MainRoutineName="Main">
+<Tags>
+<Tag Name="reset" TagType="Base" DataType="BOOL"/>
+<Tag Name="mi" TagType="Base" DataType="MOTION_INSTRUCTION">
+<Data Format="Decorated">
+<Structure DataType="MOTION_INSTRUCTION">
+<DataValueMember Name="FLAGS" DataType="DINT" Radix="Decimal" Value="0"/>
+<DataValueMember Name="EN" DataType="BOOL" Value="0"/>
+<DataValueMember Name="TrackingMaster" DataType="BOOL" Value="{tracking}"/>
+<DataValueMember Name="CalculatedDataAvailable" DataType="BOOL" Value="0"/>
+<DataValueMember Name="ERR" DataType="INT" Radix="Decimal" Value="0"/>
+</Structure>
+</Data>
+</Tag>
+</Tags>
+<Routines>
+<Routine Name="Main" Type="RLL">
+<RLLContent>
+<Rung Number="0" Type="N"><Text><![CDATA[XIC(\\Model.Cmd.Clear)OTE(reset);]]></Text></Rung>
+</RLLContent>
+</Routine>
+</Routines>
+</Program>
+<Program Use="Context" Name="Model">
+<Tags Use="Context">
+<Tag Use="Reference" Name="Cmd">
+</Tag>
+</Tags>
+</Program>
+</Programs>
+</Controller>
+</RSLogix5000Content>
+"""
+
+
+def test_a_referenced_tag_of_another_program_is_outside_the_export(tmp_path: Path) -> None:
+    # W-P-I EventCaller_Program (v33): the context lists `<Tag Use="Reference" Name=...>` with
+    # no DataType for another program's tag the rungs use: no S007; the use names a tag that
+    # lives outside the file (E101), as every reference outside a partial export does.
+    # MOTION_INSTRUCTION data carries TrackingMaster and CalculatedDataAvailable at 0 (v33):
+    # members logixst does not model, dropped at their default.
+    path = tmp_path / "caller.L5X"
+    path.write_text(PROGRAM_EXPORT.format(tracking="0"))
+    assert diagnostics(path) == [
+        "E101 undefined tag 'Program:Model.Cmd' (program Caller, routine Main, rung 0)"
+    ]
+
+
+def test_only_an_unmodelled_member_at_its_default_is_dropped(tmp_path: Path) -> None:
+    # a value other than the default is kept in the tag's data, for the checker to refuse
+    kept = {}
+    for tracking in ("0", "1"):
+        path = tmp_path / f"caller{tracking}.L5X"
+        path.write_text(PROGRAM_EXPORT.format(tracking=tracking))
+        project, _ = read_l5x(path.read_bytes(), str(path))
+        assert project is not None
+        (mi,) = [t for p in project.programs for t in p.tags if t.names[0][0] == "mi"]
+        assert isinstance(mi.init, n.StructInit)
+        kept[tracking] = [name for name, _, _ in mi.init.members]
+    assert kept == {"0": ["FLAGS", "EN", "ERR"], "1": ["FLAGS", "EN", "TrackingMaster", "ERR"]}
