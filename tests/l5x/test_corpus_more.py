@@ -267,6 +267,22 @@ def test_region_lines_and_tags_named_true_and_false(
     }
 
 
+def test_true_and_false_read_the_tags_of_those_names(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # as in ladder (decision 0054): where the project declares tags TRUE and FALSE, the words
+    # read the tags; here they hold the opposite of the literals, so the condition fails
+    tags = (
+        '<Tag Name="TRUE" TagType="Base" DataType="BOOL"/>\n'
+        '<Tag Name="FALSE" TagType="Base" DataType="BOOL"><Data Format="Decorated">'
+        '<DataValue DataType="BOOL" Value="1"/></Data></Tag>\n'
+    )
+    path = export(tmp_path, "low := 1;", "IF TRUE OR NOT FALSE THEN low := 2; END_IF;", tags=tags)
+    assert diagnostics(path) == []
+    # TRUE is 0 and FALSE is 1: 0 OR NOT 1 is false, low stays 1
+    assert run(path, capsys, "low") == {"low": 1}
+
+
 def test_a_hash_that_opens_no_region_is_still_refused(tmp_path: Path) -> None:
     path = export(tmp_path, "#regional := 1;")
     assert [d.split()[0] for d in diagnostics(path)][:1] == ["S004"]
