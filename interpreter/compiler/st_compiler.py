@@ -420,6 +420,9 @@ class RoutineCompiler:
             self.emit(Op.CONST, (self.a.enum_of[id(e)], DINT))
             return DINT
         if isinstance(e, n.Literal):
+            tag_name = self.a.bool_tag_of.get(id(e))
+            if tag_name is not None:  # TRUE/FALSE naming a tag of the project
+                return self.expr(tag_name)
             self.emit(Op.CONST, (e.value, t))
             return t
         if isinstance(e, n.Name) and id(e) in self.a.system_of:

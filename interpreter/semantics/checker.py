@@ -72,6 +72,8 @@ class Analysis:
     # statements and ladder instructions that use a tag which is not simulated (U306: module
     # data not in the export): they do not execute (SPEC 9.32), the rung condition passes on
     unsimulated: set[int] = field(default_factory=set)
+    # ST literals TRUE/FALSE where the scope declares a tag of that name: the tag (decision 0160)
+    bool_tag_of: dict[int, n.Name] = field(default_factory=dict)
 
 
 def type_matches(t: DataType, accepted: tuple[str, ...]) -> bool:
@@ -691,7 +693,14 @@ class Checker(LadderChecks):
                     self.loose(a.value)
                 return
             ins = self.cat.instruction(tag.type.name, "st")
-            if ins is not None:
+            # `PID(PID, pv, ...)`: a tag named like the instruction it is the type of, called
+            # with positional operands, is that instruction's Logix call (a v35 AOI's PID)
+            positional = bool(c.args) and c.args[0].name is None
+            own_name = ins is not None and c.name.upper() in (
+                ins.name.upper(),
+                *(a.upper() for a in ins.aliases),
+            )
+            if ins is not None and not (positional and own_name):
                 self.fb_call(c, tag, ins)
                 return
         named = next((a for a in c.args if a.name is not None), None)
@@ -1360,6 +1369,12 @@ class Checker(LadderChecks):
         return None
 
     def literal(self, e: n.Literal) -> DataType | None:
+        if e.type == "BOOL" and e.text.upper() in ("TRUE", "FALSE") and self.lookup(e.text):
+            # a project's tag named TRUE or FALSE: the word reads the tag, as in ladder
+            # (decision 0054); v33 AOIs declare them and set them (decision 0160)
+            name = n.Name(e.text, e.span)
+            self.a.bool_tag_of[id(e)] = name
+            return self.expr(name)
         if len(e.text) > 18:  # shorter integer texts always fit 64 bits: no second parse
             self.literal_limits(e)
         t = self._literal_types.get(e.type, _UNRESOLVED)  # a handful of names: BOOL DINT REAL...

@@ -210,8 +210,14 @@ def declare_types(
 ) -> list[tuple[n.TypeDecl, StructType, str]]:
     """Declare UDT names (first pass, so members may name UDTs declared later)."""
     udts: list[tuple[n.TypeDecl, StructType, str]] = []
+    # names a user type or a module declares: a described type of the same name gives way
+    own = {td.name.upper() for td, _ in decls if not td.described}
     for td, path in decls:
         existing = types.get(td.name)
+        if td.described and (existing is not None or td.name.upper() in own):
+            # Studio's description of a type known here already (a built-in, or a module's
+            # type read from its connection data): the known definition stands
+            continue
         if existing is not None and (not isinstance(existing, StructType) or existing.builtin):
             diags.append(diag("E117", f"type '{td.name}' is already defined", path, td.name_span))
             continue

@@ -6,9 +6,14 @@ cleaned text is the same line and column as in the original.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from .nodes import Comment, Span
+
+# Studio 5000 (v32+) folds ST with `#region name` ... `#endregion` lines; they are no
+# statements and the controller ignores them, so they are blanked like comments.
+_REGION = re.compile(r"^[ \t]*#(?:end)?region(?![A-Za-z0-9_])[^\n]*", re.MULTILINE | re.IGNORECASE)
 
 
 @dataclass(slots=True)
@@ -40,7 +45,10 @@ def line_starts(text: str) -> list[int]:
 
 
 def strip_comments(text: str) -> Stripped:
-    """Replace `//`, `(* *)` and `/* */` comments by blanks; strings are left alone."""
+    """Replace `//`, `(* *)` and `/* */` comments and `#region` lines by blanks; strings are
+    left alone."""
+    if "#" in text and _REGION.search(text):
+        text = _REGION.sub(lambda m: " " * len(m.group()), text)
     # Fast path: nothing that can start a comment.
     if "//" not in text and "(*" not in text and "/*" not in text:
         return Stripped(text, [], [])

@@ -321,8 +321,13 @@ class _Reader:
                     self.aoi(e)
                 elif e.tag == "EncodedData":
                     self.protected_aoi(e)
+        # module tags (`Local:1:I`) the module sections declared: with ExportOptions IOTags
+        # Studio lists them again among the controller tags, where the module's own stand
+        io_tags = {nm.upper() for d in p.tags for nm, _ in d.names if ":" in nm}
         for sec in ctl.all("Tags"):
             tags, aliases = self.tags(sec)
+            if io_tags:
+                tags = [d for d in tags if not any(nm.upper() in io_tags for nm, _ in d.names)]
             p.tags.extend(tags)
             p.aliases.extend(aliases)
         for sec in ctl.all("Programs"):
@@ -382,9 +387,11 @@ class _Reader:
                     sp,
                 )
             )
-        self.udt_raw[name.upper()] = raw
+        described = e.get("Class") in ("ProductDefined", "IO")
+        if not (described and name.upper() in self.udt_raw):
+            self.udt_raw[name.upper()] = raw
         sp = self.span(e)
-        self.project.types.append(n.TypeDecl(name, decls, sp, sp))
+        self.project.types.append(n.TypeDecl(name, decls, sp, sp, described))
 
     # ------------------------------------------------------------ tags
     def tags(self, sec: XElem) -> tuple[list[n.VarDecl], list[AliasDecl]]:
@@ -402,6 +409,10 @@ class _Reader:
             sp = self.span(e)
             if e.get("TagType") == "Alias":
                 aliases.append(AliasDecl(name, e.get("AliasFor"), sp))
+                continue
+            if e.get("Use") == "Reference" and not e.get("DataType"):
+                # the context of a program export names another program's tag it uses
+                # (`\Other.Tag`) without describing it: the tag lives outside the export
                 continue
             decl = self.var(e, name, "tag")
             if decl is not None:

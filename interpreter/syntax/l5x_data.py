@@ -39,6 +39,7 @@ ELEMENTARY = {
 }
 # Types whose values do not fit a DINT literal
 _WIDE = frozenset(("LINT", "ULINT", "UDINT", "TIME", "LTIME", "DT", "LDT"))
+_UNSIGNED = frozenset(("USINT", "UINT", "UDINT", "ULINT"))
 
 
 @dataclass(slots=True)
@@ -138,11 +139,15 @@ def parse_value(text: str, radix: str, dtype: str) -> int | float | None:
         return int.from_bytes(raw, "big", signed=False) if raw else 0
     neg = t.startswith("-")
     try:
-        value, _ = parse_number(t[1:] if neg else t)
+        value, kind = parse_number(t[1:] if neg else t)
     except ValueError:
         return None
     if isinstance(value, float):
         return None
+    if value < 0 and "#" in t and dtype in _UNSIGNED:
+        # parse_number reads a radix pattern as signed at its own width (16#ffff_0000 is
+        # -65536); an unsigned tag holds the pattern's unsigned value (a v35 UDINT mask)
+        value %= 1 << (64 if kind in ("LINT", "ULINT") else 32)
     return -value if neg else value
 
 
@@ -233,13 +238,19 @@ class DataReader:
                 if data is not None:
                     return self.string_literal(data)
             members: list[tuple[str, n.Span, n.Init]] = []
+            known = self._builtin_members(e.get("DataType"))
             for c in e.children:
                 name = c.get("Name")
                 if not name:
                     continue
                 init = self.decorated(c)
-                if init is not None:
-                    members.append((name, self.span(c), init))
+                if init is None:
+                    continue
+                if known is not None and name.upper() not in known and _is_zero(init):
+                    # a member Studio writes for a built-in type that logixst does not model
+                    # (MOTION_INSTRUCTION's TrackingMaster, v33), at its default: nothing lost
+                    continue
+                members.append((name, self.span(c), init))
             return n.StructInit(members, self.span(e))
         if tag in ("Array", "ArrayMember"):
             return self.array(e)
@@ -250,6 +261,15 @@ class DataReader:
             value = parse_value(text, e.get("Radix"), e.get("DataType").upper())
             return None if value is None else self.literal(e, value, "", text)
         return None
+
+    def _builtin_members(self, dtype: str) -> frozenset[str] | None:
+        """Upper-case member names of a catalog (built-in) structure type, else None."""
+        if not dtype or dtype.upper() in self.udts:
+            return None
+        from stdlib import catalog  # the syntax layer reads the catalog as l5x.py does
+
+        td = catalog().type(dtype)
+        return None if td is None else frozenset(m.name.upper() for m in td.members)
 
     def array(self, e: XElem) -> n.ArrayInit:
         dims = _dims(e.get("Dimensions"))
@@ -413,6 +433,10 @@ _PACKED: dict[str, tuple[tuple[tuple[str, int], ...], tuple[str, str]]] = {
         ("LEN", "POS"),
     ),
 }
+
+
+def _is_zero(init: n.Init) -> bool:
+    return isinstance(init, n.Literal) and init.value == 0
 
 
 def _is_string_structure(e: XElem) -> bool:

@@ -280,6 +280,9 @@ class TypeDecl:
     members: list[VarDecl]
     span: Span
     name_span: Span
+    # an L5X DataType of Class ProductDefined or IO: Studio's description of a built-in or
+    # module-defined type (ExportOptions ProductDefinedTypes, IOTags), not a user's definition
+    described: bool = False
 
 
 @dataclass(slots=True)

@@ -128,8 +128,13 @@ def _parser() -> Lark:
 
 @cache
 def _plain_name() -> re.Pattern[str]:
-    """The grammar's NAME terminal (an identifier that is not a reserved word), for rung_scan."""
-    return re.compile(_parser().get_terminal("st__NAME").pattern.to_regexp())
+    """The grammar's NAME terminal (an identifier that is not a reserved word), for rung_scan.
+
+    TRUE and FALSE are soft keywords (st.lark): names where no operand is expected, literals
+    in an operand, which is where the scanner meets them, so it leaves them to the grammar.
+    """
+    name = _parser().get_terminal("st__NAME").pattern.to_regexp()
+    return re.compile(r"(?i:(?!(?:TRUE|FALSE)(?![A-Za-z0-9_])))" + name)
 
 
 # ---------------------------------------------------------------- positions

@@ -45,7 +45,8 @@ _REGEX_TERMINALS = {
     "PROGRAM",
     "_TYPE",
 }
-# Keyword terminals that are keywords only where their regex's lookahead holds (st.lark).
+# Keyword terminals that are keywords only where their regex's lookahead holds (st.lark); the
+# VAR_KW words (below) too: VAR opens a block only before a name, else it is a tag (`Var := 0`).
 _LOOKAHEAD_WORDS = {"PROGRAM": "PROGRAM", "_TYPE": "TYPE"}
 _REGEX_WORDS = {
     "VAR_KW": (
@@ -89,12 +90,14 @@ class StLexer(Lexer):
         for tname, words in _REGEX_WORDS.items():
             pattern = re.compile(by_name[tname].pattern.to_regexp(), re.IGNORECASE)
             for w in words:
-                assert pattern.fullmatch(w), (tname, w)
+                m = pattern.match(f"{w} a")  # VAR_KW's lookahead wants a name after it
+                assert m is not None and m.end() == len(w), (tname, w)
                 self.keywords[w] = tname
         # the keyword's own regex decides, at the word's position, where it has a lookahead
         self.lookahead: dict[str, re.Pattern[str]] = {}
         for tname, w in _LOOKAHEAD_WORDS.items():
             self.keywords[w] = tname
+        for tname in (*_LOOKAHEAD_WORDS, "VAR_KW"):
             self.lookahead[tname] = re.compile(by_name[tname].pattern.to_regexp(), re.IGNORECASE)
         self.hard = {w for w in self.keywords if not name_re.fullmatch(w)}
         self.ops = ops

@@ -61,6 +61,8 @@ SNIPPETS = {
     "type_program_tags": "type.a := 4; program := type.b; type[1] := program;",
     "type_after_header": "TYPE END_TYPE VAR x : DINT; END_VAR type := x; program.x := 1;",
     "program_unit": "PROGRAM Main\nTYPE P : STRUCT a : DINT; END_STRUCT END_TYPE VAR q : P; END_VAR q.a := 1; END_PROGRAM",
+    # VAR words are tags outside a header; VAR opens a block only before a name.
+    "var_words_as_tags": "VAR v : REAL; END_VAR Var := v; var_in := var + 1; var_temp[0] := Var;",
     "keyword_members": "m.AND := m.or + m.Mod MOD 2; m.Array[m.NOT] := Local:1:I.Data; IF m.THEN THEN m.end_if := 1; END_IF;",
 }
 
