@@ -46,3 +46,22 @@ def trace(
         with out_csv.open() as f:
             rows = list(csv.DictReader(f))
     return rows, json.loads(buf.getvalue())
+
+
+def run_each_scan(
+    tmp_path: Path, decl: str, body: str, scans: int, watch: list[str], period_ms: float
+) -> list[dict[str, str]]:
+    """Trace rows of an ST program that runs `body` each scan after `n := n + 1` (n = 1 on
+    the first scan); the program must check clean."""
+    src = f"VAR n : DINT; {decl} END_VAR\nn := n + 1;\n{body}\n"
+    rows, report = trace(tmp_path, src, ".st", scans, watch, period_ms=period_ms)
+    assert report["diagnostics"] == []
+    return rows
+
+
+def column(rows: list[dict[str, str]], name: str) -> list[float]:
+    return [float(r[name]) for r in rows]
+
+
+def int_column(rows: list[dict[str, str]], name: str) -> list[int]:
+    return [int(r[name]) for r in rows]

@@ -16,25 +16,10 @@ import pytest
 
 from interpreter.instructions import filter_blocks as fb
 from interpreter.vm.context import ExecContext
-from tests.instructions.run_cli import trace
+from tests.instructions.run_cli import column as _col
+from tests.instructions.run_cli import int_column as _ints
+from tests.instructions.run_cli import run_each_scan as _run
 from tests.instructions.structs import new_struct, struct_type
-
-
-def _run(tmp_path: Path, decl: str, body: str, scans: int, watch: list[str], period_ms: float):
-    """Run `body` each scan after `n := n + 1` (n = 1 on the first scan)."""
-    src = f"VAR n : DINT; {decl} END_VAR\nn := n + 1;\n{body}\n"
-    rows, report = trace(tmp_path, src, ".st", scans, watch, period_ms=period_ms)
-    assert report["diagnostics"] == []
-    return rows
-
-
-def _col(rows: list[dict[str, str]], name: str) -> list[float]:
-    return [float(r[name]) for r in rows]
-
-
-def _ints(rows: list[dict[str, str]], name: str) -> list[int]:
-    return [int(r[name]) for r in rows]
-
 
 STEP = "IF n > 1 THEN f.In := 1.0; END_IF;\n"  # In steps 0 -> 1 after the first scan
 
