@@ -63,14 +63,18 @@ def _samples(
 
 
 @implements("MAVE")
-def mave(ctx: ExecContext, rung: bool, s: list, storage: ArrayRef, weights: ArrayRef) -> None:
+def mave(
+    ctx: ExecContext, rung: bool, s: list, storage: ArrayRef, weights: ArrayRef | None = None
+) -> None:
+    # the WeightArray operand is optional (an unweighted average needs none); weighting with
+    # no weights is treated as a weight array too small for any NumberOfSamples
     limit = len(storage)
     if s[_AV["USEWEIGHTS"]]:
-        limit = min(limit, len(weights))
+        limit = min(limit, len(weights) if weights is not None else 0)
     values = _samples(s, _AV, _AV_WORDS, storage, limit)
     if values is None:
         return
-    if s[_AV["USEWEIGHTS"]]:
+    if s[_AV["USEWEIGHTS"]] and weights is not None:
         out = math.fsum(float(weights.get(i)) * v for i, v in enumerate(values))  # type: ignore[arg-type]
     else:
         out = math.fsum(values) / len(values)

@@ -78,6 +78,26 @@ def test_scl_through_run(tmp_path: Path) -> None:
     assert report["diagnostics"] == []
 
 
+def test_scl_enable_out_may_be_written_and_scl_sets_it_again(tmp_path: Path) -> None:
+    # W-P-I/FunctionBlocks PF525_V2 (v33) writes `ScaleSP.EnableOut := EnableOut;` and Studio
+    # verified it: the member is writable. Written 0 it reads 0 until SCL executes, which
+    # sets it to 1 (ST always executes the block).
+    src = (
+        "VAR s : SCALE; before, after : BOOL; END_VAR\n"
+        "s.EnableOut := 0; before := s.EnableOut; s.InRawMax := 1.0;\n"
+        "SCL(s);\nafter := s.EnableOut;\n"
+    )
+    rows, report = trace(tmp_path, src, ".st", 1, ["before", "after"])
+    assert (rows[0]["before"], rows[0]["after"]) == ("0", "1")
+    assert report["diagnostics"] == []
+
+
+def test_scl_out_stays_read_only(tmp_path: Path) -> None:
+    src = "VAR s : SCALE; END_VAR\ns.Out := 1.0;\n"
+    _rows, report = trace(tmp_path, src, ".st", 1, [], expect_code=1)
+    assert [d["code"] for d in report["diagnostics"]] == ["E120"]
+
+
 # ------------------------------------------------------------------ PID
 def _pid(**members: object) -> list:
     dialog: dict[str, object] = {"MAXS": 100.0, "MAXI": 100.0, "MAXO": 100.0, "MAXCV": 100.0}

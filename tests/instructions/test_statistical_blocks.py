@@ -120,3 +120,27 @@ def test_std_dev_closed_form_and_prescan_refill() -> None:
     s[SD["NUMBEROFSAMPLES"]] = -3
     sb.mstd(ExecContext(), True, s, st)
     assert (s[SD["STATUS"]], s[SD["NUMBEROFSAMPINV"]], s[SD["INSTRUCTFAULT"]]) == (5, 1, 1)
+
+
+def test_mave_without_weight_array_through_run(tmp_path: Path) -> None:
+    # WeightArray is optional in ST (1756-RM006 marks it so; Studio accepts
+    # `MAVE(tag, storage);`). An unweighted average needs no weights: In = 2, 4, 6, 8 with
+    # N = 2 gives [2 2] -> 2, [4 2] -> 3, [6 4] -> 5, [8 6] -> 7. With UseWeights set and no
+    # weight array, no NumberOfSamples fits: NumberOfSampInv (Status.2) and InstructFault
+    # (Status.0) are set, Status = 1 + 4 = 5, and Out holds its last value (7).
+    src = (
+        "VAR m : MOVING_AVERAGE; st : ARRAY[0..4] OF REAL; x : REAL; k : DINT; END_VAR\n"
+        "x := x + 2.0; k := k + 1;\n"
+        "IF k = 5 THEN m.UseWeights := 1; END_IF;\n"
+        "m.In := x; m.NumberOfSamples := 2; m.SampleEnable := 1; MAVE(m, st);\n"
+    )
+    rows, report = trace(tmp_path, src, ".st", 5, ["m.Out", "m.Status", "m.NumberOfSampInv"])
+    assert [float(r["m.Out"]) for r in rows] == [2.0, 3.0, 5.0, 7.0, 7.0]
+    assert [r["m.Status"] for r in rows] == ["0", "0", "0", "0", "5"]
+    assert report["diagnostics"] == []
+
+
+def test_mave_with_one_operand_is_still_refused(tmp_path: Path) -> None:
+    src = "VAR m : MOVING_AVERAGE; END_VAR\nMAVE(m);\n"
+    _rows, report = trace(tmp_path, src, ".st", 1, ["m.Out"], expect_code=1)
+    assert [d["code"] for d in report["diagnostics"]] == ["E104"]

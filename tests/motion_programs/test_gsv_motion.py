@@ -110,3 +110,72 @@ def test_unsimulated_gsv_leaves_the_destination_unchanged() -> None:
     cell = [7]
     gsv(ExecContext(), True, cls.value, 0, attr.value, Ref(cell, 0, INT))
     assert cell == [7]
+
+
+def _check(mp, src: str) -> list[dict]:  # type: ignore[no-untyped-def]
+    prog = mp.tmp / "c.st"
+    prog.write_text(src)
+    mp.capsys.readouterr()
+    main(["check", str(prog), "--format", "json"])
+    diags = json.loads(mp.capsys.readouterr().out)
+    return diags if isinstance(diags, list) else diags["diagnostics"]  # type: ignore[no-any-return]
+
+
+def test_cip_axis_fault_bits_and_motion_status_words_are_read_only_members(mp) -> None:
+    # W-P-I/FunctionBlocks Servo_Object (v33) tests each CIP axis fault by name
+    # (Axis.MotorOvercurrentFault ... ExternalInputFault) and the words MotionAlarmStatus /
+    # MotionFaultStatus; its program reads ConverterOutputStatus. On a healthy simulated
+    # axis all of them read 0 (nothing raises a drive fault); CIPAxisFaults is 64 bits wide.
+    src = """VAR
+  A : AXIS_CIP_DRIVE;
+  any : BOOL; words : DINT; all : LINT;
+END_VAR
+any := A.MotorOvercurrentFault OR A.ConverterACSinglePhaseLossFault OR A.BusPowerBlownFuseFault
+  OR A.FeedbackDataLossULFault OR A.SensorFault OR A.ExternalInputFault OR A.ConverterOutputStatus;
+words := A.MotionAlarmStatus + A.MotionFaultStatus + A.CIPAxisIOStatusRA;
+all := A.CIPAxisFaults;
+"""
+    tr = mp.trace(src, ["any", "words", "all"], scans=2)
+    assert (tr.at(0.0, "any"), tr.at(0.0, "words"), tr.at(0.0, "all")) == (0, 0, 0)
+    # they are status: the program cannot write them
+    bad = src.replace("all := A.CIPAxisFaults;", "A.MotorOvercurrentFault := 1;")
+    assert [d["code"] for d in _check(mp, bad)] == ["E120"]
+
+
+def test_axis_jerk_limits_by_their_gsv_names_and_drive_attributes_as_u303(mp) -> None:
+    # W-P-I/FunctionBlocks PF527_V4 (v33): SSV(Axis, Axis, MaximumAccelerationJerk, r) and
+    # GSV of the motor nameplate and gearbox; Servo_Object: SSV(Axis, ..., InhibitAxis, d)
+    # and GSV AxisFaultBits / ModuleFaultBits / MotionFaultBits.
+    src = """VAR
+  X : AXIS_VIRTUAL := (MaximumAccelJerk := 300.0);
+  j, jd, r : REAL; f, m, mf, inh, lt : DINT; k : DINT;
+END_VAR
+GSV(Axis, X, MaximumAccelerationJerk, j);
+r := 1250.0;
+IF k = 1 THEN SSV(Axis, X, MaximumDecelerationJerk, r); END_IF;
+GSV(Axis, X, MaximumDecelerationJerk, jd);
+GSV(Axis, X, AxisFaultBits, f);
+GSV(Axis, X, ModuleFaultBits, m);
+k := k + 1;
+"""
+    tr = mp.trace(src, ["j", "jd", "X.MaximumDecelJerk", "f", "m"], scans=3)
+    # the GSV names read and write the MaximumAccelJerk / MaximumDecelJerk members
+    assert tr.at(0.0, "j") == 300.0
+    assert tr.at(0.0, "jd") == 0.0 and tr.at(0.001, "jd") == 1250.0
+    assert tr.at(0.001, "X.MaximumDecelJerk") == 1250.0
+    # AxisFaultBits / ModuleFaultBits are the AxisFault / ModuleFaults words: 0 when healthy
+    assert (tr.at(0.0, "f"), tr.at(0.0, "m")) == (0, 0)
+    cat = catalog()
+    assert cat.system_attribute("Axis", "AxisFaultBits").member == "AxisFault"  # type: ignore[union-attr]
+    assert cat.system_attribute("Axis", "ModuleFaultBits").member == "ModuleFaults"  # type: ignore[union-attr]
+    # drive attributes the simulator does not model: U303 warnings, not errors
+    extra = src.replace(
+        "k := k + 1;",
+        "GSV(Axis, X, RotaryMotorRatedSpeed, r); GSV(Axis, X, LoadType, lt);\n"
+        "GSV(Axis, X, MotionFaultBits, mf); inh := 1; SSV(Axis, X, InhibitAxis, inh);\n"
+        "SSV(Axis, X, MaximumFrequency, r); k := k + 1;",
+    )
+    assert [d["code"] for d in _check(mp, extra)] == ["U303"] * 5
+    # a name that is no Axis attribute stays an error
+    bad = src.replace("k := k + 1;", "GSV(Axis, X, MotorRatedSpeedy, r); k := k + 1;")
+    assert [d["code"] for d in _check(mp, bad)] == ["E108"]
