@@ -10,6 +10,7 @@ LOGIXST_FUZZ_LONG=1 for the long mode.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
@@ -29,13 +30,33 @@ DECLS = (
     + "END_VAR\n"
 )
 
+# Hypothesis keeps what it learnt of every example of a run (about 150 KB each for these
+# programs), so a long-mode run of 78,000 examples grew past 20 GB and was killed. The budget
+# is therefore spent in rounds of at most ROUND examples, each a fresh hypothesis run.
+TOTAL = 150 * SCALE
+ROUND = 1_000
 SETTINGS = settings(
-    max_examples=150 * SCALE,
     deadline=None,
     derandomize=SCALE == 1,  # the CI run is reproducible; the long mode explores
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+    suppress_health_check=[
+        HealthCheck.too_slow,
+        HealthCheck.data_too_large,
+        HealthCheck.function_scoped_fixture,
+    ],
     database=None,
 )
+
+
+def in_rounds(strategy: st.SearchStrategy[str], check: Callable[[str], None]) -> None:
+    """Run `check` on TOTAL generated examples, ROUND at a time."""
+    for start in range(0, TOTAL, ROUND):
+
+        def one(example: str) -> None:  # a new function each round: a new hypothesis run
+            check(example)
+
+        rules = settings(SETTINGS, max_examples=min(ROUND, TOTAL - start))
+        given(strategy)(rules(one))()
+
 
 integers = st.one_of(
     st.integers(-5, 5),
@@ -155,12 +176,14 @@ def statements(depth: int = 0) -> st.SearchStrategy[str]:
 st_programs = st.lists(statements(), min_size=1, max_size=6).map(lambda s: DECLS + "".join(s))
 
 
-@SETTINGS
-@given(program=st_programs)
-def test_st_programs(tmp_path_factory, program: str) -> None:  # noqa: ANN001
-    path = Path(tmp_path_factory.mktemp("st")) / "gen.st"
-    path.write_text(program)
-    check_and_run([path])
+def test_st_programs(tmp_path: Path) -> None:
+    path = tmp_path / "gen.st"
+
+    def check(program: str) -> None:
+        path.write_text(program)
+        check_and_run([path])
+
+    in_rounds(st_programs, check)
 
 
 # ---- ladder: rungs of bit, math, compare and move instructions with branches
@@ -200,10 +223,12 @@ rung_body = st.recursive(
 ladder_programs = st.lists(rung_body.map(lambda r: r + ";\n"), min_size=1, max_size=6).map("".join)
 
 
-@SETTINGS
-@given(rungs=ladder_programs)
-def test_ladder_programs(tmp_path_factory, rungs: str) -> None:  # noqa: ANN001
-    folder = Path(tmp_path_factory.mktemp("rll"))
-    (folder / "tags.st").write_text(DECLS)
-    (folder / "main.rll").write_text(rungs)
-    check_and_run([folder / "main.rll", folder / "tags.st"])
+def test_ladder_programs(tmp_path: Path) -> None:
+    (tmp_path / "tags.st").write_text(DECLS)
+    main = tmp_path / "main.rll"
+
+    def check(rungs: str) -> None:
+        main.write_text(rungs)
+        check_and_run([main, tmp_path / "tags.st"])
+
+    in_rounds(ladder_programs, check)
