@@ -51,6 +51,7 @@ from interpreter.motion.process import (
     LevelSel,
 )
 from interpreter.motion.rotary import travel, travel_array, wrap
+from interpreter.motion.rowset import RowSet
 
 if TYPE_CHECKING:
     from interpreter.motion.group import MotionGroup
@@ -283,53 +284,34 @@ def pass_add(law: CamLaw) -> float:
 _STATUS_NAMES = ("PositionCamStatus", "PositionCamLockStatus", "PositionCamPendingStatus")
 
 
-class PositionCamSet:
+class PositionCamSet(RowSet[Coupling]):
     """Running couplings in struct-of-arrays form; rows are rebuilt when the set changes.
     MAPC cams waiting for their lock position (`armed`) and queued behind an active one
     (`pending`, per slave) are kept aside until they start."""
 
+    STATE = (
+        ("k", "_k", float),
+        ("last", "_last", float),
+        ("mu", "_mu", float),
+        ("ramp_t", "_rt", float),
+        ("peak", "_peak", float),
+        ("v", "_v", float),
+        ("a", "_a", float),
+    )
+    AXIS = "slave"
+
     def __init__(self) -> None:
-        self.rows: list[Coupling] = []
+        super().__init__()
         self.armed: list[Coupling] = []
         self.pending: dict[int, Coupling] = {}
         self.claim: set[int] = set()  # slaves with an active or armed MAPC (ERR 23)
         self.last_dir: dict[int, int] = {}  # slave -> +1 / -1 of its last MAPC
-        self._dirty = True
         self._bank: ProfileBank | None = None
         self._ended: list[Coupling] = []
         self._started: list[Coupling] = []
         self._mapc_rows = False
         self._lockok = np.zeros(0, dtype=bool)
         self._idle_status: dict[str, np.ndarray] | None = None
-
-    # -- membership ---------------------------------------------------------------
-    def _sync_out(self) -> None:
-        """Copy the array state back into the Coupling objects before the rows change."""
-        if self._dirty or not self.rows:
-            return
-        for i, c in enumerate(self.rows):
-            c.k = float(self._k[i])
-            c.last = float(self._last[i])
-            c.mu = float(self._mu[i])
-            c.ramp_t = float(self._rt[i])
-            c.peak = float(self._peak[i])
-            c.v = float(self._v[i])
-            c.a = float(self._a[i])
-
-    def add(self, c: Coupling) -> None:
-        self._sync_out()
-        self.rows.append(c)
-        self._dirty = True
-
-    def remove(self, gone: list[Coupling]) -> None:
-        self._sync_out()
-        ids = {id(c) for c in gone}
-        self.rows = [c for c in self.rows if id(c) not in ids]
-        self._dirty = True
-
-    def on_axis(self, axis: int) -> list[Coupling]:
-        self._sync_out()
-        return [c for c in self.rows if c.slave == axis]
 
     def _rebuild(self) -> None:
         rows = self.rows

@@ -32,6 +32,7 @@ from interpreter.motion.process import (
     LevelSel,
     rows_at_level,
 )
+from interpreter.motion.rowset import RowSet
 
 if TYPE_CHECKING:  # the group calls start_time_cam; only the annotation needs the class
     from interpreter.motion.group import MotionGroup
@@ -62,53 +63,33 @@ class TimeCam:
         return LockDirection.NONE if self.clock is None else self.clock.lock_direction
 
 
-class TimeCamSet:
+class TimeCamSet(RowSet[TimeCam]):
     """Active time cams in struct-of-arrays form; rows are rebuilt when the set changes."""
 
+    STATE = (
+        ("raw", "_raw", float),
+        ("count", "_count", int),
+        ("offset", "_offset", float),
+        ("passes", "_passes", float),
+        ("last", "_last", float),
+        ("v", "_v", float),
+        ("a", "_a", float),
+    )
+
     def __init__(self) -> None:
-        self.cams: list[TimeCam] = []
+        super().__init__()
         self.pending: dict[int, TimeCam] = {}
         self.claim: set[int] = set()  # axes with an active or queued immediate cam
         self.claim_mode: dict[int, bool] = {}  # claimed axis -> its cam is master driven
         self.last_dir: dict[int, int] = {}  # axis -> +1 same, -1 opposite (absent: none yet)
-        self._dirty = True
         self._bank: ProfileBank | None = None
         # status arrays while the cams are unchanged (shared with the group: read-only)
         self._status_cache: tuple[int, dict[str, np.ndarray]] | None = None
         self._claim_touched = False  # a stop freed a claim since the last status
 
-    # -- membership ---------------------------------------------------------------
-    def add(self, cam: TimeCam) -> None:
-        self._sync_out()
-        self.cams.append(cam)
-        self._dirty = True
-
-    def remove(self, cams: list[TimeCam]) -> None:
-        self._sync_out()
-        gone = {id(c) for c in cams}
-        self.cams = [c for c in self.cams if id(c) not in gone]
-        self._dirty = True
-
-    def on_axis(self, axis: int) -> list[TimeCam]:
-        self._sync_out()
-        return [c for c in self.cams if c.axis == axis]
-
-    def _sync_out(self) -> None:
-        """Copy the array state back into the TimeCam objects before the rows change."""
-        if self._dirty or not self.cams:
-            return
-        for k, c in enumerate(self.cams):
-            c.raw = float(self._raw[k])
-            c.count = int(self._count[k])
-            c.offset = float(self._offset[k])
-            c.passes = float(self._passes[k])
-            c.last = float(self._last[k])
-            c.v = float(self._v[k])
-            c.a = float(self._a[k])
-
     def _rebuild(self) -> None:
         self._status_cache = None
-        cams = self.cams
+        cams = self.rows
         profiles: list[CamProfile] = []
         index: dict[int, int] = {}
         for c in cams:
@@ -158,7 +139,7 @@ class TimeCamSet:
         return bool(self.on_axis(axis))
 
     def links_in_use(self) -> set[int]:
-        return {c.link for c in self.cams if c.link}
+        return {c.link for c in self.rows if c.link}
 
     def end_axis(self, axis: int, reason: EndReason, events: Events) -> tuple[float, bool]:
         """Stops (All, Time Cam), merges and kills end the axis's cams; stops and kills also
@@ -199,7 +180,7 @@ class TimeCamSet:
         events: Events,
     ) -> Contribution:
         """Advance the cams (all, or those whose axis has the given level) one update."""
-        if not self.cams:
+        if not self.rows:
             return EMPTY
         if self._dirty:
             self._rebuild()
@@ -221,11 +202,11 @@ class TimeCamSet:
         mvel: np.ndarray | None = None
         if self._md_rows:
             in_sel = set(self._all_rows[sel].tolist())
-            mvel = np.ones(len(self.cams))
+            mvel = np.ones(len(self.rows))
             for k in self._md_rows:
                 if k not in in_sel:
                     continue
-                c = self.cams[k]
+                c = self.rows[k]
                 assert c.clock is not None
                 ref, m = int(c.clock.reference), c.clock.master  # 0 actual, 1 command
                 self._raw[k] = c.clock.advance(float(positions[ref][m]))
@@ -315,7 +296,7 @@ class TimeCamSet:
     ) -> float:
         """End a cam at the end of its pass; start the pending cam with the leftover time."""
         self._sync_out()
-        old = self.cams[row]
+        old = self.rows[row]
         end_value = old.gain * old.profile.net * (old.passes + 1.0)
         extra = end_value - old.last  # rows computed for handovers hold P(clamped x)
         old.last = end_value
@@ -365,14 +346,14 @@ class TimeCamSet:
         if self._finished or self._started:
             self._sync_out()
             gone = {id(c) for c in self._finished}
-            self.cams = [c for c in self.cams if id(c) not in gone] + self._started
+            self.rows = [c for c in self.rows if id(c) not in gone] + self._started
             self._dirty = True
 
     def velocity_sums(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """Per-axis sums of the cams' command velocity and acceleration."""
         if self._dirty:
             self._rebuild()
-        if not self.cams:
+        if not self.rows:
             return np.zeros(n), np.zeros(n)
         return (
             np.bincount(self._axis, self._v, n),
@@ -386,10 +367,10 @@ class TimeCamSet:
         return self._axis
 
     def edges(self) -> list[tuple[int, int]]:
-        return [(c.axis, c.clock.master) for c in self.cams if c.clock is not None]
+        return [(c.axis, c.clock.master) for c in self.rows if c.clock is not None]
 
     def shift_master(self, axis: int, delta: float) -> None:
-        for c in self.cams:
+        for c in self.rows:
             if c.clock is not None:
                 c.clock.shift(axis, delta)
 
@@ -404,7 +385,7 @@ class TimeCamSet:
         # asked at the end of an update, when every queued request has been applied: the
         # claim on an axis is exactly its running cam
         self.claim = set(self.active_axes().tolist())
-        self.claim_mode = {c.axis: c.clock is not None for c in self.cams}
+        self.claim_mode = {c.axis: c.clock is not None for c in self.rows}
         self._claim_touched = False
         tc = np.zeros(n, dtype=bool)
         tc[self.active_axes()] = True
@@ -419,7 +400,7 @@ class TimeCamSet:
     def locked_axes(self) -> list[int]:
         return [
             c.axis
-            for c in self.cams
+            for c in self.rows
             if c.clock is not None
             and c.clock.lock_direction != LockDirection.NONE
             and c.clock.locked
