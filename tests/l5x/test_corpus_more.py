@@ -7,16 +7,15 @@ hand. Where the rule has an edge, a twin shows the edge still holds.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
 
-from interpreter.cli import main
 from interpreter.runtime.loader import load
 from interpreter.syntax import nodes as n
 from interpreter.syntax.l5x import read_l5x
 from interpreter.syntax.st_parser import parse_st
+from tests.l5x.cli_run import run
 
 HEAD = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
 <RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="35.00" TargetName="More" TargetType="Controller">
@@ -65,17 +64,6 @@ def export(tmp_path: Path, *lines: str, tags: str = "") -> Path:
 
 def diagnostics(path: Path) -> list[str]:
     return [f"{d.code} {d.message}" for d in load([path]).diagnostics]
-
-
-def run(path: Path, capsys: pytest.CaptureFixture[str], *watch: str) -> dict[str, object]:
-    argv = ["run", str(path), "--scans", "1", "--json"]
-    for w in watch:
-        argv += ["--watch", w]
-    capsys.readouterr()
-    code = main(argv)
-    out = capsys.readouterr().out
-    assert code == 0, out
-    return json.loads(out)["tags"]  # type: ignore[no-any-return]
 
 
 # ------------------------------------------------------------ VAR and END_VAR are tag names

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from interpreter.cli import main
 from interpreter.runtime.loader import load
+from tests.l5x.cli_run import run
 
 HEAD = """<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
 <RSLogix5000Content SchemaRevision="1.0" SoftwareRevision="20.04" TargetName="Rules" TargetType="Controller">
@@ -69,17 +69,6 @@ def export(tmp_path: Path, *rungs: str, tags: str = "") -> Path:
 
 def codes(path: Path) -> list[str]:
     return [d.code for d in load([path]).diagnostics]
-
-
-def run(path: Path, capsys: pytest.CaptureFixture[str], *watch: str) -> dict[str, object]:
-    argv = ["run", str(path), "--scans", "1", "--json"]
-    for w in watch:
-        argv += ["--watch", w]
-    capsys.readouterr()
-    code = main(argv)
-    out = capsys.readouterr().out
-    assert code == 0, out
-    return json.loads(out)["tags"]  # type: ignore[no-any-return]
 
 
 # ------------------------------------------------------------ integers where numbers are taken
