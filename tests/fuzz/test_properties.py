@@ -30,9 +30,10 @@ DECLS = (
     + "END_VAR\n"
 )
 
-# Hypothesis keeps what it learnt of every example of a run (about 150 KB each for these
-# programs), so a long-mode run of 78,000 examples grew past 20 GB and was killed. The budget
-# is therefore spent in rounds of at most ROUND examples, each a fresh hypothesis run.
+# Memory grows with every example a hypothesis run checks (60-130 KB each for these programs,
+# docs/reliability.md): a long run of 78,000 examples in one process with the other tests
+# grew past 20 GB and was killed. The budget is spent in rounds of at most ROUND examples,
+# each a fresh hypothesis run, and the long mode runs one process per component.
 TOTAL = 150 * SCALE
 ROUND = 1_000
 SETTINGS = settings(
