@@ -23,6 +23,10 @@ import pytest
 
 T0 = 0.002  # start update of an instruction executed in scan 0
 CUP = 0.002  # coarse update period, s
+# The circles of the MCCM tests have L = 20 pi and run at 10 units/s with 100 units/s^2: the
+# quarter point s = 5 pi is reached at t0 + 0.1 + (5 pi - 0.5)/10 = 1.6228 s; the update
+# nearest it (|dt| <= 1 ms: 0.01 units along the path)
+QUARTER = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
 F32 = 2e-4  # float32 rounding of positions below ~100 units
 
 
@@ -108,6 +112,14 @@ def _pc_time(t0: float, length: float) -> float:
     return t0 + math.ceil((length / 10.0 + 0.1) / CUP - 1e-6) * CUP
 
 
+def _xy_uv(st, decls: str, body: str):  # noqa: ANN001, ANN202
+    """6.45 s of the 2D systems XY and UV (both run the same circle length, 20 pi)."""
+    watch = [f"{a}.CommandPosition" for a in "XYUV"]
+    return trace(
+        st, cs_prog(CS_HEAD, decls, body), 6450, *watch, "c1.PC", "c2.PC", "c1.ER", "c2.ER"
+    )
+
+
 def _on_circle(pts: list[tuple[float, ...]], centre: tuple[float, ...], r: float) -> None:
     for p in pts:
         assert math.dist(p, centre) == pytest.approx(r, abs=F32), (p, centre, r)
@@ -155,10 +167,8 @@ def test_mccm_2d_full_directions_make_one_revolution_back_to_the_start(st) -> No
         "IF k = 0 THEN " + mccm("XY", "c1", "e", 1, "ctr", 2) + mccm("UV", "c2", "e", 1, "ctr", 3)
     )
     body += " END_IF;"
-    tr = trace(st, cs_prog(CS_HEAD, decls, body), 6450, "X.CommandPosition",
-               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC")  # fmt: skip
-    t_q = T0 + 0.1 + (5 * math.pi - 0.5) / 10.0
-    row = round(t_q / CUP) * CUP  # the update nearest the quarter point (|dt| <= 1 ms: 0.01 units)
+    tr = _xy_uv(st, decls, body)
+    row = QUARTER
     assert tr.at(row, "X.CommandPosition") == pytest.approx(10.0, abs=0.02)
     assert tr.at(row, "Y.CommandPosition") == pytest.approx(10.0, abs=1e-3)
     assert tr.at(row, "U.CommandPosition") == pytest.approx(10.0, abs=0.02)
@@ -181,11 +191,9 @@ def test_mccm_2d_centre_end_equal_start_is_a_full_circle_cw_too(st) -> None:
         "IF k = 0 THEN " + mccm("XY", "c1", "e", 1, "ctr", 0) + mccm("UV", "c2", "e", 1, "ctr", 2)
     )
     body += " END_IF;"
-    tr = trace(st, cs_prog(CS_HEAD, decls, body), 6450, "X.CommandPosition",
-               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
-               "c1.ER", "c2.ER")  # fmt: skip
+    tr = _xy_uv(st, decls, body)
     assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
-    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    row = QUARTER
     for a, b in (("X", "Y"), ("U", "V")):
         assert tr.at(row, f"{a}.CommandPosition") == pytest.approx(10.0, abs=0.02)
         assert tr.at(row, f"{b}.CommandPosition") == pytest.approx(10.0, abs=1e-3)
@@ -367,7 +375,7 @@ def test_mccm_3d_full_circles(st) -> None:
     body += " END_IF;"
     names = [f"{n}.CommandPosition" for n in "XYZUVW"]
     tr = trace(st, cs_prog(CS3_HEAD, decls, body), 6450, *names, "c1.PC", "c2.PC")
-    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    row = QUARTER
     assert tr.at(row, "X.CommandPosition") == pytest.approx(10.0, abs=0.02)
     assert tr.at(row, "Z.CommandPosition") == pytest.approx(10.0, abs=1e-3)
     assert tr.at(row, "U.CommandPosition") == pytest.approx(10.0, abs=0.02)
@@ -391,7 +399,7 @@ def test_mccm_3d_via_point_decides_the_way_round(st) -> None:
     pts = tr.points(*names)
     _on_circle(pts, (10.0, 0.0, 0.0), 10.0)
     assert all(abs(p[1] - p[2]) < F32 for p in pts)
-    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    row = QUARTER
     assert tr.at(row, "Y.CommandPosition") == pytest.approx(7.0711, abs=1e-3)
     assert pts[-1] == (20.0, 0.0, 0.0)
     assert tr.first("c1.PC", 1) == pytest.approx(_pc_time(T0, 10 * math.pi))
@@ -885,11 +893,9 @@ def test_mccm_full_circles_by_radius_and_by_via_point(st) -> None:
         "IF k = 0 THEN " + mccm("XY", "c1", "e1", 2, "10.0", 2) + mccm("UV", "c2", "e2", 0, "a", 3)
     )
     body += " END_IF;"
-    tr = trace(st, cs_prog(CS_HEAD, decls, body), 6450, "X.CommandPosition",
-               "Y.CommandPosition", "U.CommandPosition", "V.CommandPosition", "c1.PC", "c2.PC",
-               "c1.ER", "c2.ER")  # fmt: skip
+    tr = _xy_uv(st, decls, body)
     assert tr.at(0.0, "c1.ER") == 0 and tr.at(0.0, "c2.ER") == 0
-    row = round((T0 + 0.1 + (5 * math.pi - 0.5) / 10.0) / CUP) * CUP
+    row = QUARTER
     for a, b in (("X", "Y"), ("U", "V")):
         _on_circle(tr.points(f"{a}.CommandPosition", f"{b}.CommandPosition"), (10.0, 0.0), 10.0)
         assert tr.at(row, f"{a}.CommandPosition") == pytest.approx(10.0, abs=0.02)
